@@ -1,0 +1,101 @@
+#pragma once
+// The one runner shared by every quadapt command-line tool (tools/*.cpp).
+//
+// A tool is an options struct plus one library call. tools/NAME.cpp only
+//   1. builds a Tool, maps CLI11 flags onto its options struct,
+//   2. calls Tool::run with a body that reads inputs, calls lib/, writes outputs.
+// The runner supplies --help, --version, --report FILE, -q/--quiet, --threads N, catches every
+// exception and turns it into ONE line on stderr plus the exit code below, and writes the JSON
+// report (provenance: tool, version, command line, effective options, inputs, outputs,
+// timings per phase, threads, peak memory).
+//
+// Exit-code contract (docs/exit-codes.md):
+//   0  success
+//   1  failure, but a valid output was saved (body threw PartialFailure after writing)
+//   2  failure, nothing written: bad input or options (InputError, CLI parse error), or a
+//      numerical / external failure (NumericalError, ExternalError)
+//   3  internal error (a bug: any other exception)
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace quadapt {
+
+/// Thrown by a tool body after it has written a valid (but e.g. unconverged) output: exit 1.
+struct PartialFailure : Error {
+  using Error::Error;
+};
+
+class Tool {
+ public:
+  /// `name` is the executable name; `summary` one line; `details` (optional) a paragraph for
+  /// --help explaining method, inputs, outputs and equations.
+  Tool(std::string name, std::string summary, std::string details = "");
+
+  /// The CLI11 app: add the tool's own options here before run().
+  CLI::App& app() { return app_; }
+
+  /// Parses argv and runs body. Returns the exit code (use: return tool.run(argc, argv, ...)).
+  int run(int argc, char** argv, const std::function<void()>& body);
+
+  /// Declares an input file (recorded in the report; outputs may never overwrite it).
+  void input(const std::string& path);
+  /// Declares an output file: checks it is not an input; the default report path becomes
+  /// OUTPUT with its extension replaced by .json. Call before writing.
+  void output(const std::string& path);
+
+  /// The JSON report. Put computed figures at top level (e.g. report()["dofs"] = n);
+  /// "tool", "version", "command", "options", "inputs", "outputs", "timings", "threads",
+  /// "peak_memory_mb" are filled in by the runner.
+  nlohmann::json& report() { return report_; }
+  /// Records an effective option value in report()["options"][key].
+  template <class T>
+  void option(const std::string& key, const T& value) { report_["options"][key] = value; }
+
+  /// Progress message on stderr ("name: msg"), unless -q.
+  void log(const std::string& msg) const;
+  bool quiet() const { return quiet_; }
+
+  /// RAII phase timer: wall seconds are added to report()["timings"][phase].
+  class Phase {
+   public:
+    Phase(Tool& t, std::string name);
+    ~Phase();
+    Phase(const Phase&) = delete;
+    Phase& operator=(const Phase&) = delete;
+   private:
+    Tool& tool_;
+    std::string name_;
+    std::chrono::steady_clock::time_point start_;
+  };
+  Phase phase(const std::string& name) { return Phase(*this, name); }
+
+  /// Writes the report now (atomically). run() calls this after a successful body, and after
+  /// PartialFailure. A tool whose report goes to stdout (meshquality) calls set_report_path("-").
+  void write_report();
+  void set_report_path(const std::string& p) { report_path_ = p; }
+  const std::string& report_path() const { return report_path_; }
+
+  const std::string& name() const { return name_; }
+
+ private:
+  std::string name_;
+  CLI::App app_;
+  nlohmann::json report_;
+  std::vector<std::string> inputs_;
+  std::vector<std::string> outputs_;
+  std::string report_path_;
+  bool quiet_ = false;
+  int threads_ = 0;
+  std::chrono::steady_clock::time_point start_;
+};
+
+/// Peak resident memory of this process in MiB (from /proc/self/status VmHWM).
+double peak_memory_mb();
+
+}  // namespace quadapt

@@ -1,0 +1,38 @@
+#pragma once
+// Gmsh MSH files <-> Mesh (DESIGN.md section 3).
+//
+// Reading: MSH 4.1 (ASCII and binary) and MSH 2.2 (ASCII and binary). 2D meshes of 3-node
+// triangles and 4-node quads; 2-node lines become boundary edges of their physical group (by
+// name from $PhysicalNames, else "boundary_<tag>"); points and other element types of lower
+// dimension are ignored, 2D elements of other types are an error. Nodes are renumbered 0..n-1,
+// cells in file order. $ElementData views become CellFields, $ElementNodeData views become
+// CellNodeFields (a view with an $InterpolationScheme of a tensor-product GLL basis of degree p
+// written by us gets degree = p). The last time step of each view is kept.
+// When the file has no boundary lines (PHiLiP's frame files), the boundary is the mesh's free
+// edges, split at corners (mesh/boundary.hpp).
+//
+// Writing: MSH 4.1 ASCII with $PhysicalNames, $Entities (one curve per boundary group, one
+// surface), $Nodes, $Elements (boundary lines, then cells), then one view per field. Numbers are
+// printed with 17 significant digits so reading back is bit-exact. Gmsh opens the result and
+// shows every field (the DG field through $InterpolationScheme). Written atomically.
+//
+// Every error is an InputError "PATH: problem" (truncated file, unsupported version, missing
+// section, NaN coordinate, unknown node, unsupported element type, field of wrong length...).
+#include <iosfwd>
+#include <string>
+
+#include "mesh/mesh.hpp"
+
+namespace quadapt {
+
+/// Reads a mesh with its fields. Throws InputError naming `path` and the problem.
+Mesh read_msh(const std::string& path);
+
+/// Writes MSH 4.1 ASCII atomically (temporary file + rename).
+void write_msh(const Mesh& mesh, const std::string& path);
+
+/// Stream variants (path only used in messages).
+Mesh read_msh(std::istream& in, const std::string& path_for_messages);
+void write_msh(const Mesh& mesh, std::ostream& out);
+
+}  // namespace quadapt

@@ -1,0 +1,26 @@
+#pragma once
+// Mesh validation with one-line, actionable errors. Tools call validate_mesh after reading.
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+
+namespace quadapt {
+
+enum class CellKind { Any, Quads, Triangles };
+
+struct ValidateOptions {
+  CellKind require = CellKind::Any;           ///< element type the tool needs
+  bool allow_hanging_nodes = true;            ///< 2:1 non-conforming quads are legal
+  std::vector<std::string> required_groups;   ///< boundary names that must exist (case's BCs)
+  std::vector<std::string> required_fields;   ///< cell or cell-node fields that must exist
+};
+
+/// Throws InputError("PATH: problem") on: no cells; a cell type other than required; a
+/// non-finite coordinate; a node index out of range; an inverted (negative Jacobian at a corner)
+/// or degenerate (zero area) cell, naming the cell and its centroid; a boundary edge that is not
+/// a free edge of the mesh; a required boundary group or field missing (listing what exists);
+/// a field whose length does not match the cell count.
+void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions& opt = {});
+
+}  // namespace quadapt
