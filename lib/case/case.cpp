@@ -1,0 +1,160 @@
+#include "case/case.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+
+namespace quadapt {
+
+namespace {
+
+using nlohmann::json;
+
+double constant_value(const json& v, const std::string& path, const std::string& key) {
+  if (v.is_number()) return v.get<double>();
+  if (v.is_string()) {
+    try {
+      return parse_constant(v.get<std::string>());
+    } catch (const InputError& e) {
+      throw InputError(path, "key '" + key + "': " + e.what());
+    }
+  }
+  throw InputError(path, "key '" + key + "': expected a number or a constant expression string, got " + v.dump());
+}
+
+}  // namespace
+
+bool Case::is_dirichlet(const std::string& group_name) const {
+  if (dirichlet_all) return true;
+  return std::find(dirichlet.begin(), dirichlet.end(), group_name) != dirichlet.end();
+}
+
+Case parse_case(const std::string& text, const std::string& path) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::exception& e) {
+    throw InputError(path, std::string("not valid JSON: ") + e.what());
+  }
+  if (!j.is_object()) throw InputError(path, "a case file must be a JSON object");
+  static const std::vector<std::string> known = {"name",      "description", "diffusion", "advection",
+                                                 "exact",     "dirichlet",   "functional"};
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (std::find(known.begin(), known.end(), it.key()) == known.end())
+      throw InputError(path, "unknown key '" + it.key() +
+                                 "' (known: name, description, diffusion, advection, exact, dirichlet, functional)");
+
+  Case cs;
+  cs.path = path;
+  if (j.contains("name")) {
+    if (!j["name"].is_string()) throw InputError(path, "key 'name' must be a string");
+    cs.name = j["name"].get<std::string>();
+  }
+  if (j.contains("description")) {
+    if (!j["description"].is_string()) throw InputError(path, "key 'description' must be a string");
+    cs.description = j["description"].get<std::string>();
+  }
+  if (j.contains("diffusion")) {
+    const json& d = j["diffusion"];
+    if (!d.is_array() || d.size() != 2 || !d[0].is_array() || !d[1].is_array() || d[0].size() != 2 ||
+        d[1].size() != 2)
+      throw InputError(path, "key 'diffusion' must be a 2x2 array [[a, b], [b, c]]");
+    for (int r = 0; r < 2; ++r)
+      for (int c = 0; c < 2; ++c) cs.diffusion(r, c) = constant_value(d[r][c], path, "diffusion");
+    const Eigen::Matrix2d& D = cs.diffusion;
+    if (!D.allFinite()) throw InputError(path, "key 'diffusion' has a non-finite entry");
+    double scale = D.cwiseAbs().maxCoeff();
+    if (std::abs(D(0, 1) - D(1, 0)) > 1e-14 * scale)
+      throw InputError(path, "key 'diffusion' must be symmetric ([[a, b], [b, c]])");
+    if (D(0, 0) < 0 || D(1, 1) < 0 || D(0, 0) * D(1, 1) - D(0, 1) * D(1, 0) < -1e-14 * scale * scale)
+      throw InputError(path, "key 'diffusion' must be positive semi-definite");
+  }
+  if (j.contains("advection")) {
+    const json& c = j["advection"];
+    if (!c.is_array() || c.size() != 2) throw InputError(path, "key 'advection' must be an array [cx, cy]");
+    for (int r = 0; r < 2; ++r) cs.advection(r) = constant_value(c[r], path, "advection");
+    if (!cs.advection.allFinite()) throw InputError(path, "key 'advection' has a non-finite entry");
+  }
+  if (cs.diffusion.isZero(0.0) && cs.advection.isZero(0.0))
+    throw InputError(path, "both 'diffusion' and 'advection' are zero: there is no PDE to solve");
+
+  if (!j.contains("exact")) throw InputError(path, "missing key 'exact' (the exact solution u(x, y))");
+  if (!j["exact"].is_string()) throw InputError(path, "key 'exact' must be an expression string");
+  cs.exact_source = j["exact"].get<std::string>();
+  try {
+    cs.exact = parse_expression(cs.exact_source);
+  } catch (const InputError& e) {
+    throw InputError(path, std::string("key 'exact': ") + e.what());
+  }
+
+  if (j.contains("dirichlet")) {
+    const json& d = j["dirichlet"];
+    if (d.is_string() && d.get<std::string>() == "all") {
+      cs.dirichlet_all = true;
+    } else {
+      if (!d.is_array()) throw InputError(path, "key 'dirichlet' must be a list of boundary names (or \"all\")");
+      cs.dirichlet_all = false;
+      for (const json& n : d) {
+        if (!n.is_string()) throw InputError(path, "key 'dirichlet' must list boundary names (strings)");
+        cs.dirichlet.push_back(n.get<std::string>());
+      }
+    }
+  }
+  if (j.contains("functional")) {
+    const json& f = j["functional"];
+    if (!f.is_object()) throw InputError(path, "key 'functional' must be an object {\"boundary\": NAME}");
+    for (auto it = f.begin(); it != f.end(); ++it)
+      if (it.key() != "boundary")
+        throw InputError(path, "unknown key 'functional." + it.key() + "' (known: boundary)");
+    if (!f.contains("boundary") || !f["boundary"].is_string())
+      throw InputError(path, "key 'functional' needs \"boundary\": NAME");
+    cs.functional_boundary = f["boundary"].get<std::string>();
+    if (cs.functional_boundary.empty()) throw InputError(path, "key 'functional.boundary' is empty");
+  }
+  return cs;
+}
+
+Case load_case(const std::string& path) { return parse_case(read_text_file(path), path); }
+
+void check_case_boundaries(const Case& cs, const Mesh& mesh) {
+  auto list = [&] {
+    std::string s;
+    for (const auto& g : mesh.groups) s += (s.empty() ? "" : ", ") + g.name;
+    return s.empty() ? std::string("none") : s;
+  };
+  for (const std::string& n : cs.dirichlet)
+    if (mesh.find_group(n) < 0)
+      throw InputError(cs.path, "Dirichlet boundary '" + n + "' is not a boundary group of the mesh (groups: " +
+                                    list() + ")");
+  if (cs.has_functional() && mesh.find_group(cs.functional_boundary) < 0)
+    throw InputError(cs.path, "functional boundary '" + cs.functional_boundary +
+                                  "' is not a boundary group of the mesh (groups: " + list() + ")");
+}
+
+ExactSolution::ExactSolution(const Case& cs) {
+  using O = ExprOp;
+  u_ = cs.exact;
+  ux_ = differentiate(u_, 0);
+  uy_ = differentiate(u_, 1);
+  Expr uxx = differentiate(ux_, 0);
+  Expr uxy = differentiate(ux_, 1);
+  Expr uyy = differentiate(uy_, 1);
+  const Eigen::Matrix2d& D = cs.diffusion;
+  const Eigen::Vector2d& c = cs.advection;
+  auto k = expr_const;
+  Expr s = expr_binary(O::Mul, k(D(0, 0)), uxx);
+  s = expr_binary(O::Add, s, expr_binary(O::Mul, k(D(0, 1) + D(1, 0)), uxy));
+  s = expr_binary(O::Add, s, expr_binary(O::Mul, k(D(1, 1)), uyy));
+  s = expr_binary(O::Sub, s, expr_binary(O::Mul, k(c(0)), ux_));
+  s = expr_binary(O::Sub, s, expr_binary(O::Mul, k(c(1)), uy_));
+  s_ = s;
+  prog_ = ExprProgram({u_, ux_, uy_, s_});
+}
+
+double ExactSolution::u(double x, double y) const { return prog_.eval(x, y)[U]; }
+double ExactSolution::source(double x, double y) const { return prog_.eval(x, y)[S]; }
+
+}  // namespace quadapt
