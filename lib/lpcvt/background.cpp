@@ -1,0 +1,265 @@
+#include "lpcvt/background.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "lpcvt/quadrature.hpp"
+#include "mesh/topology.hpp"
+
+namespace quadapt::lpcvt {
+
+namespace {
+
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+std::string where(const Mesh& m, int c) {
+  Vec2 g = cell_centroid(m, c);
+  std::ostringstream os;
+  os << "cell " << c << " (centroid " << g.x() << ", " << g.y() << ")";
+  return os.str();
+}
+
+}  // namespace
+
+bool in_convex_polygon(const std::array<Vec2, 4>& v, int nv, const Vec2& y, double tol) {
+  for (int k = 0; k < nv; ++k) {
+    const Vec2& a = v[k];
+    const Vec2& b = v[(k + 1) % nv];
+    Vec2 e = b - a;
+    double len = e.norm();
+    if (cross(e, y - a) < -tol * len) return false;
+  }
+  return true;
+}
+
+// ------------------------------------------------------------------------------ metrics
+
+Mat2 SaddleMetric::M(const Vec2& y) const {
+  Mat2 m;
+  m << 1 + 4 * y.x() * y.x(), -4 * y.x() * y.y(), -4 * y.x() * y.y(), 1 + 4 * y.y() * y.y();
+  return m;
+}
+
+void SaddleMetric::eval(const Vec2& y, Mat2& M, Mat2& d0, Mat2& d1) const {
+  M = this->M(y);
+  d0 << 8 * y.x(), -4 * y.y(), -4 * y.y(), 0;
+  d1 << 0, -4 * y.x(), -4 * y.x(), 8 * y.y();
+}
+
+// ------------------------------------------------------------------------------ construction
+
+void Background::build(const Mesh& m) {
+  mesh_ = m;
+  cells_.clear();
+  if (m.num_cells() == 0) throw InputError("", "background mesh has no cells");
+  for (const Vec2& p : m.nodes)
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
+      throw InputError("", "background mesh has a non-finite node coordinate");
+  lo_ = hi_ = m.nodes.empty() ? Vec2(0, 0) : m.nodes[0];
+  for (const Vec2& p : m.nodes) {
+    lo_ = lo_.cwiseMin(p);
+    hi_ = hi_.cwiseMax(p);
+  }
+  const double diam = (hi_ - lo_).norm();
+  tol_ = 1e-10 * diam;
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const Cell& cl = m.cells[c];
+    if (cl.nv != 3 && cl.nv != 4) throw InputError("", "background " + where(m, c) + " is neither a triangle nor a quad");
+    for (int k = 0; k < cl.nv; ++k)
+      if (cl.v[k] < 0 || cl.v[k] >= m.num_nodes())
+        throw InputError("", "background cell " + std::to_string(c) + " has a node index out of range");
+    std::array<Vec2, 4> v;
+    for (int k = 0; k < cl.nv; ++k) v[k] = m.nodes[cl.v[k]];
+    double a = cell_area(m, c);
+    if (!(a > 1e-14 * diam * diam))
+      throw InputError("", "background " + where(m, c) + (a < 0 ? " is inverted (clockwise)" : " is degenerate (zero area)"));
+    int reflex = -1;
+    for (int k = 0; k < cl.nv; ++k) {
+      double t = cross(v[k] - v[(k + cl.nv - 1) % cl.nv], v[(k + 1) % cl.nv] - v[k]);
+      if (t <= 0) {
+        if (reflex >= 0 || cl.nv == 3)
+          throw InputError("", "background " + where(m, c) + " is inverted or self-intersecting");
+        reflex = k;
+      }
+    }
+    if (reflex < 0) {
+      IntegrationCell ic;
+      ic.v = v;
+      ic.nv = cl.nv;
+      ic.mesh_cell = c;
+      cells_.push_back(ic);
+    } else {  // non-convex quad: split along the diagonal from the reflex vertex
+      for (int h = 0; h < 2; ++h) {
+        IntegrationCell ic;
+        ic.nv = 3;
+        ic.mesh_cell = c;
+        int k0 = reflex, k1 = (reflex + 1 + h) % 4, k2 = (reflex + 2 + h) % 4;
+        ic.v = {v[k0], v[k1], v[k2], Vec2(0, 0)};
+        cells_.push_back(ic);
+      }
+    }
+  }
+  // A mesh without boundary edges (e.g. built in memory): its free edges, one group.
+  if (mesh_.boundary.empty()) {
+    Topology t = build_topology(mesh_);
+    int g = mesh_.group_index("boundary");
+    for (const Face& f : t.faces) {
+      if (!f.is_boundary()) continue;
+      const Cell& cl = mesh_.cells[f.cell[0]];
+      BoundaryEdge be;
+      be.v = {cl.v[f.local_edge[0]], cl.v[(f.local_edge[0] + 1) % cl.nv]};
+      be.group = g;
+      mesh_.boundary.push_back(be);
+    }
+  }
+  // Bucket grid: about one cell per bucket.
+  const int n = static_cast<int>(cells_.size());
+  Vec2 ext = (hi_ - lo_).cwiseMax(Vec2::Constant(1e-300));
+  double aspect = ext.x() / ext.y();
+  nx_ = std::clamp(static_cast<int>(std::ceil(std::sqrt(n * aspect))), 1, 4096);
+  ny_ = std::clamp(static_cast<int>(std::ceil(n / static_cast<double>(nx_))), 1, 4096);
+  dx_ = ext.x() / nx_;
+  dy_ = ext.y() / ny_;
+  std::vector<std::vector<int>> b(static_cast<size_t>(nx_) * ny_);
+  for (int c = 0; c < n; ++c) {
+    Vec2 a = cells_[c].v[0], z = a;
+    for (int k = 1; k < cells_[c].nv; ++k) {
+      a = a.cwiseMin(cells_[c].v[k]);
+      z = z.cwiseMax(cells_[c].v[k]);
+    }
+    int i0 = std::clamp(static_cast<int>(std::floor((a.x() - tol_ - lo_.x()) / dx_)), 0, nx_ - 1);
+    int i1 = std::clamp(static_cast<int>(std::floor((z.x() + tol_ - lo_.x()) / dx_)), 0, nx_ - 1);
+    int j0 = std::clamp(static_cast<int>(std::floor((a.y() - tol_ - lo_.y()) / dy_)), 0, ny_ - 1);
+    int j1 = std::clamp(static_cast<int>(std::floor((z.y() + tol_ - lo_.y()) / dy_)), 0, ny_ - 1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) b[static_cast<size_t>(j) * nx_ + i].push_back(c);
+  }
+  bucket_ptr_.assign(b.size() + 1, 0);
+  for (size_t k = 0; k < b.size(); ++k) bucket_ptr_[k + 1] = bucket_ptr_[k] + static_cast<int>(b[k].size());
+  bucket_cells_.clear();
+  bucket_cells_.reserve(bucket_ptr_.back());
+  for (auto& l : b) bucket_cells_.insert(bucket_cells_.end(), l.begin(), l.end());
+}
+
+void Background::finish() {
+  area_ = 0;
+  metric_area_ = 0;
+  const TriangleRule& rule = collapsed_gauss(8);
+  for (const IntegrationCell& ic : cells_) {
+    for (int t = 1; t + 1 < ic.nv; ++t) {
+      const Vec2 &a = ic.v[0], &b = ic.v[t], &c = ic.v[t + 1];
+      double at = 0.5 * cross(b - a, c - a);
+      area_ += at;
+      if (!analytic_) {
+        metric_area_ += at * std::abs(ic.M.determinant());
+      } else {
+        double s = 0;
+        for (int q = 0; q < rule.size(); ++q) {
+          Vec2 y = rule.bary[q][0] * a + rule.bary[q][1] * b + rule.bary[q][2] * c;
+          s += rule.w[q] * std::abs(analytic_->M(y).determinant());
+        }
+        metric_area_ += at * s * scale_ * scale_;
+      }
+    }
+  }
+}
+
+Background Background::from_frame(const Mesh& m, double scale, const std::string& path) {
+  if (!(scale > 0) || !std::isfinite(scale)) throw InputError("", "metric scale must be positive");
+  Background bg;
+  try {
+    bg.build(m);
+  } catch (const InputError& e) {
+    throw InputError(path, e.what());
+  }
+  bg.scale_ = scale;
+  const CellField* f = m.cell_field("Vinv");
+  if (!f) {
+    std::string have;
+    for (const auto& cf : m.cell_fields) have += (have.empty() ? "" : ", ") + cf.name;
+    throw InputError(path, "no cell field \"Vinv\" (the frame M = V^-1); fields present: " +
+                               (have.empty() ? std::string("none") : have));
+  }
+  if (f->ncomp != 9) throw InputError(path, "field \"Vinv\" has " + std::to_string(f->ncomp) + " components, expected 9");
+  if (f->num_cells() != m.num_cells() || f->values.size() != static_cast<size_t>(m.num_cells()) * 9)
+    throw InputError(path, "field \"Vinv\" has " + std::to_string(f->num_cells()) + " values for " +
+                               std::to_string(m.num_cells()) + " cells");
+  for (IntegrationCell& ic : bg.cells_) {
+    int c = ic.mesh_cell;
+    Mat2 M;
+    M << (*f)(c, 0), (*f)(c, 1), (*f)(c, 3), (*f)(c, 4);
+    if (!M.allFinite()) throw InputError(path, "non-finite frame \"Vinv\" in " + where(m, c));
+    double nrm = M.squaredNorm();
+    if (!(nrm > 0) || !(std::abs(M.determinant()) > 1e-12 * nrm))
+      throw InputError(path, "singular frame \"Vinv\" (det M = " + std::to_string(M.determinant()) + ") in " + where(m, c));
+    ic.M = scale * M;
+  }
+  bg.finish();
+  return bg;
+}
+
+Background Background::analytic(const Mesh& m, std::shared_ptr<const AnalyticMetric> f, double scale) {
+  Background bg;
+  bg.build(m);
+  bg.scale_ = scale;
+  bg.analytic_ = std::move(f);
+  for (IntegrationCell& ic : bg.cells_) {
+    Vec2 g = Vec2::Zero();
+    for (int k = 0; k < ic.nv; ++k) g += ic.v[k] / ic.nv;
+    ic.M = scale * bg.analytic_->M(g);
+  }
+  bg.finish();
+  return bg;
+}
+
+Background Background::sampled(const Mesh& m, const AnalyticMetric& f, double scale) {
+  Background bg;
+  bg.build(m);
+  bg.scale_ = scale;
+  for (IntegrationCell& ic : bg.cells_) ic.M = scale * f.M(cell_centroid(m, ic.mesh_cell));
+  bg.finish();
+  return bg;
+}
+
+// ------------------------------------------------------------------------------ queries
+
+Mat2 Background::metric(int c, const Vec2& y) const {
+  if (analytic_) return scale_ * analytic_->M(y);
+  return cells_[c].M;
+}
+
+void Background::metric_derivs(int c, const Vec2& y, Mat2& M, Mat2& d0, Mat2& d1) const {
+  if (analytic_) {
+    analytic_->eval(y, M, d0, d1);
+    M *= scale_;
+    d0 *= scale_;
+    d1 *= scale_;
+  } else {
+    M = cells_[c].M;
+    d0.setZero();
+    d1.setZero();
+  }
+}
+
+int Background::locate(const Vec2& y, int hint) const {
+  if (hint >= 0 && hint < num_cells() && in_convex_polygon(cells_[hint].v, cells_[hint].nv, y, tol_))
+    return hint;
+  double fx = (y.x() - lo_.x()) / dx_, fy = (y.y() - lo_.y()) / dy_;
+  if (!(fx > -1e-9 * nx_ - 1e-9 && fy > -1e-9 * ny_ - 1e-9 && fx < nx_ * (1 + 1e-9) + 1e-9 &&
+        fy < ny_ * (1 + 1e-9) + 1e-9))
+    return -1;
+  int i = std::clamp(static_cast<int>(std::floor(fx)), 0, nx_ - 1);
+  int j = std::clamp(static_cast<int>(std::floor(fy)), 0, ny_ - 1);
+  size_t b = static_cast<size_t>(j) * nx_ + i;
+  for (int k = bucket_ptr_[b]; k < bucket_ptr_[b + 1]; ++k) {
+    int c = bucket_cells_[k];
+    if (in_convex_polygon(cells_[c].v, cells_[c].nv, y, tol_)) return c;
+  }
+  return -1;
+}
+
+double Background::mean_spacing() const { return std::sqrt(area_ / std::max(1.0, metric_area_)); }
+
+}  // namespace quadapt::lpcvt

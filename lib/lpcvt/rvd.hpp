@@ -1,0 +1,69 @@
+#pragma once
+// The restricted (clipped) Voronoi diagram: Voronoi cells of the sites intersected with the
+// domain (thesis §4.3), computed as pieces  Omega_i ∩ Q  for every integration cell Q of the
+// background (lpcvt/background.hpp). Since every Q is convex, each piece is a convex polygon
+// obtained by clipping Q with the half-planes of site i's Voronoi cell (Sutherland-Hodgman
+// with the convex cell as clipper, as in [132]). Because the integration cells tile Omega, the
+// pieces tile the clipped Voronoi diagram for ANY polygonal domain, convex or not, with holes.
+//
+// Enumeration: for every Q, start at the site nearest to Q's centroid (its cell meets Q), clip,
+// and continue breadth-first with the Delaunay neighbours j whose bisector appears as an edge
+// of the clipped polygon: the cells meeting a convex Q are connected. Every piece is met once.
+//
+// Each polygon edge carries a label: the bisector with site j (label j >= 0) or edge e of Q
+// (label -1 - e). Vertex k is the intersection of the lines of edges k-1 and k, which is what
+// the gradient needs (lpcvt/energy.hpp): a Q vertex (constant), a bisector/Q-edge intersection
+// (a "clip point", depends on x_i, x_j), or a bisector/bisector intersection (a Voronoi vertex,
+// the circumcentre of x_i, x_j, x_k).
+#include <vector>
+
+#include "lpcvt/background.hpp"
+#include "lpcvt/delaunay.hpp"
+
+namespace quadapt::lpcvt {
+
+/// A convex polygon piece of the clipped Voronoi cell of `site` inside integration cell `cell`.
+struct RvdPiece {
+  int site = -1;
+  int cell = -1;
+  std::vector<Vec2> v;     ///< vertices, counter-clockwise
+  std::vector<int> label;  ///< label[k] of the edge v[k] -> v[k+1]: site j, or -1 - (edge of Q)
+};
+
+/// Per-thread scratch space for RestrictedVoronoi::pieces.
+struct RvdWorkspace {
+  std::vector<int> stamp;  ///< per site: last cell that visited it (+1)
+  std::vector<int> queue;
+  std::vector<Vec2> tmp_v;
+  std::vector<int> tmp_l;
+};
+
+class RestrictedVoronoi {
+ public:
+  /// Builds the Delaunay graph of `sites` and the starting site of every integration cell.
+  RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites);
+
+  const DelaunayGraph& delaunay() const { return dt_; }
+  const std::vector<Vec2>& sites() const { return *sites_; }
+
+  /// The non-empty pieces inside integration cell q, in breadth-first order from the start
+  /// site (deterministic). `out` is cleared first. Thread-safe (const) with one workspace per
+  /// thread.
+  void pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& ws) const;
+
+  /// All pieces of all cells (serial; for pictures and tests), ordered by cell.
+  std::vector<RvdPiece> all_pieces() const;
+
+ private:
+  const Background* bg_;
+  const std::vector<Vec2>* sites_;
+  DelaunayGraph dt_;
+  std::vector<int> start_;  ///< per integration cell: nearest site to its centroid
+};
+
+/// Clips the convex CCW polygon (v, label) by the half-plane closer to x_i than to x_j
+/// (Sutherland-Hodgman); new edges get label j. Output replaces (v, label).
+void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2& xi,
+                      const Vec2& xj, int j, std::vector<Vec2>& tmp_v, std::vector<int>& tmp_l);
+
+}  // namespace quadapt::lpcvt

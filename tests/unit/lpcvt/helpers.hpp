@@ -1,0 +1,76 @@
+#pragma once
+// Shared helpers for the lpcvt unit tests: small in-memory domains and frames.
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "lpcvt/background.hpp"
+#include "mesh/mesh.hpp"
+
+namespace lpcvt_test {
+
+using quadapt::Mesh;
+using quadapt::Vec2;
+using namespace quadapt::lpcvt;
+
+/// The §6.1 square [-1.3, 1.3]^2 as an n x n grid.
+inline Mesh saddle_square(int n) { return quadapt::make_structured_quads(n, n, -1.3, 1.3, -1.3, 1.3); }
+
+/// L-shape [0,2]^2 minus (1,2]x(1,2], as a 4x4 grid minus the top-right 2x2 block; no boundary
+/// edges (the background derives them from the free edges).
+inline Mesh l_shape() {
+  Mesh g = quadapt::make_structured_quads(4, 4, 0, 2, 0, 2);
+  Mesh m;
+  m.nodes = g.nodes;
+  for (int c = 0; c < g.num_cells(); ++c) {
+    Vec2 z = quadapt::cell_centroid(g, c);
+    if (z.x() > 1 && z.y() > 1) continue;
+    m.cells.push_back(g.cells[c]);
+  }
+  return m;
+}
+
+/// [0,3]^2 minus the middle cell of a 3x3 grid (a square hole); no boundary edges.
+inline Mesh square_with_hole() {
+  Mesh g = quadapt::make_structured_quads(3, 3, 0, 3, 0, 3);
+  Mesh m;
+  m.nodes = g.nodes;
+  for (int c = 0; c < g.num_cells(); ++c)
+    if (c != 4) m.cells.push_back(g.cells[c]);
+  return m;
+}
+
+/// Adds a constant "Vinv" field M = V^-1 with V = R(theta) diag(h1, h2).
+inline void set_frame(Mesh& m, double h1, double h2, double theta) {
+  quadapt::CellField f;
+  f.name = "Vinv";
+  f.ncomp = 9;
+  f.values.assign(static_cast<size_t>(m.num_cells()) * 9, 0.0);
+  Mat2 R;
+  R << std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta);
+  Mat2 V = R * Eigen::Vector2d(h1, h2).asDiagonal();
+  Mat2 M = V.inverse();
+  for (int c = 0; c < m.num_cells(); ++c) {
+    f(c, 0) = M(0, 0);
+    f(c, 1) = M(0, 1);
+    f(c, 3) = M(1, 0);
+    f(c, 4) = M(1, 1);
+    f(c, 8) = 1;
+  }
+  m.set_field(f);
+}
+
+/// n uniform random points strictly inside the background's cells (rejection in the bbox).
+inline std::vector<Vec2> random_inside(const Background& bg, int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> ux(bg.lo().x(), bg.hi().x()), uy(bg.lo().y(), bg.hi().y());
+  std::vector<Vec2> p;
+  while (static_cast<int>(p.size()) < n) {
+    Vec2 y(ux(rng), uy(rng));
+    if (bg.inside(y)) p.push_back(y);
+  }
+  return p;
+}
+
+}  // namespace lpcvt_test

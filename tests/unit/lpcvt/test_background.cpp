@@ -1,0 +1,131 @@
+// Metric lookup, input validation and boundary equidistribution (thesis §4.1-4.2).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/error.hpp"
+#include "helpers.hpp"
+#include "lpcvt/boundary.hpp"
+
+using namespace lpcvt_test;
+
+namespace {
+// integral_0^1 |M(a + t(b-a)) (b-a)|_2 dt by composite Simpson with 2000 intervals
+double fine_length(const AnalyticMetric& f, const Vec2& a, const Vec2& b) {
+  const int n = 2000;
+  double s = 0;
+  for (int k = 0; k <= n; ++k) {
+    double t = static_cast<double>(k) / n, w = (k == 0 || k == n) ? 1 : (k % 2 ? 4 : 2);
+    s += w * (f.M(a + t * (b - a)) * (b - a)).norm();
+  }
+  return s / (3.0 * n);
+}
+}  // namespace
+
+TEST_CASE("point location finds the containing cell, and nothing outside the domain") {
+  Mesh m = l_shape();
+  set_frame(m, 1, 1, 0);
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  CHECK(bg.area() == doctest::Approx(3.0));
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.1, 2.1);
+  int hint = -1;
+  for (int k = 0; k < 2000; ++k) {
+    Vec2 y(u(rng), u(rng));
+    bool in = y.x() >= 0 && y.y() >= 0 && y.x() <= 2 && y.y() <= 2 && !(y.x() > 1 && y.y() > 1);
+    int c = bg.locate(y, hint);
+    CHECK((c >= 0) == in);
+    if (c >= 0) {
+      CHECK(in_convex_polygon(bg.cell(c).v, bg.cell(c).nv, y, 1e-12));
+      hint = c;
+    }
+  }
+  // node and edge points belong to the closed domain
+  CHECK(bg.inside(Vec2(2, 0)));
+  CHECK(bg.inside(Vec2(1, 1.5)));
+  CHECK(bg.inside(Vec2(1.5, 1)));
+}
+
+TEST_CASE("frame validation: missing, non-finite or singular Vinv and inverted cells") {
+  Mesh m = quadapt::make_structured_quads(2, 2);
+  CHECK_THROWS_AS(Background::from_frame(m, 1.0, "f.msh"), quadapt::InputError);
+  set_frame(m, 0.1, 0.2, 0.3);
+  CHECK_NOTHROW(Background::from_frame(m, 1.0, "f.msh"));
+  Mesh bad = m;
+  bad.cell_field("Vinv")->values[9 + 1] = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH_AS(Background::from_frame(bad, 1.0, "f.msh"), doctest::Contains("non-finite"), quadapt::InputError);
+  bad = m;
+  for (int k : {0, 1, 3, 4}) bad.cell_field("Vinv")->values[18 + k] = 1.0;  // rank 1
+  CHECK_THROWS_WITH_AS(Background::from_frame(bad, 1.0, "f.msh"), doctest::Contains("singular"), quadapt::InputError);
+  bad = m;
+  std::swap(bad.cells[0].v[1], bad.cells[0].v[3]);  // clockwise
+  CHECK_THROWS_WITH_AS(Background::from_frame(bad, 1.0, "f.msh"), doctest::Contains("inverted"), quadapt::InputError);
+  bad = m;
+  bad.cell_field("Vinv")->values.pop_back();
+  CHECK_THROWS_AS(Background::from_frame(bad, 1.0, "f.msh"), quadapt::InputError);
+}
+
+TEST_CASE("metric area = integral of det M_eff; the frame scale 1/4 gives 1/(16 h1 h2) points") {
+  Mesh m = quadapt::make_structured_quads(3, 3);
+  set_frame(m, 0.01, 0.04, 0.7);
+  Background bg = Background::from_frame(m, 0.25, "mem");
+  CHECK(bg.metric_area() == doctest::Approx(1.0 / (16 * 0.01 * 0.04)).epsilon(1e-12));
+  auto f = std::make_shared<SaddleMetric>();
+  Background sa = Background::analytic(saddle_square(4), f, 1.0);
+  // integral of 1 + 4x^2 + 4y^2 over [-1.3,1.3]^2 = 6.76 + 8 * 2.6 * (2 * 1.3^3 / 3)
+  CHECK(sa.metric_area() == doctest::Approx(6.76 + 8 * 2.6 * 2 * std::pow(1.3, 3) / 3).epsilon(1e-12));
+}
+
+TEST_CASE("boundary curves split at corners and keep their groups") {
+  Mesh sq = quadapt::make_structured_quads(4, 4);
+  set_frame(sq, 0.1, 0.1, 0);
+  Background bg = Background::from_frame(sq, 1.0, "mem");
+  auto curves = boundary_curves(bg);
+  CHECK(curves.size() == 4);
+  for (const auto& c : curves) {
+    CHECK(c.nodes.size() == 5);
+    CHECK(!c.closed);
+  }
+  Mesh L = l_shape();  // no groups: free edges, one group, six corners
+  set_frame(L, 0.1, 0.1, 0);
+  Background bl = Background::from_frame(L, 1.0, "mem");
+  CHECK(boundary_curves(bl).size() == 6);
+  Mesh H = square_with_hole();
+  set_frame(H, 0.1, 0.1, 0);
+  Background bh = Background::from_frame(H, 1.0, "mem");
+  CHECK(boundary_curves(bh).size() == 8);
+  CHECK(boundary_curves(bh, 120).size() == 2);  // no corners at 90 degrees: two closed loops
+  for (const auto& c : boundary_curves(bh, 120)) CHECK(c.closed);
+}
+
+TEST_CASE("boundary points equidistribute the metric length (eqs. 4.2-4.7)") {
+  auto f = std::make_shared<SaddleMetric>();
+  Background bg = Background::analytic(saddle_square(16), f, 1.0);
+  auto curves = boundary_curves(bg);
+  BoundaryPoints b = mesh_boundary(bg, curves, 8);
+  REQUIRE(curves.size() == 4);
+  int seg = 0;
+  for (size_t c = 0; c < curves.size(); ++c) {
+    const Vec2 a = bg.mesh().nodes[curves[c].nodes.front()], z = bg.mesh().nodes[curves[c].nodes.back()];
+    double exact = fine_length(*f, a, z);
+    CHECK(b.curve_length[c] == doctest::Approx(exact).epsilon(1e-3));
+    int n = b.curve_segments[c];
+    CHECK(n == std::lround(exact));
+    for (int k = 0; k < n; ++k, ++seg) {
+      auto s = b.segments[seg];
+      double l = fine_length(*f, b.points[s[0]], b.points[s[1]]);
+      CHECK(l == doctest::Approx(exact / n).epsilon(2e-3));
+    }
+  }
+  // corners are shared: 4 corners + interior points of the four sides
+  int interior = 0;
+  for (int n : b.curve_segments) interior += n - 1;
+  CHECK(static_cast<int>(b.points.size()) == 4 + interior);
+  // piecewise-constant metric: exact equidistribution of the piecewise-linear length
+  Mesh m = quadapt::make_structured_quads(5, 1, 0, 1, 0, 0.2);
+  set_frame(m, 0.05, 0.05, 0);
+  Background bc = Background::from_frame(m, 1.0, "mem");
+  BoundaryPoints bp = mesh_boundary(bc, boundary_curves(bc));
+  for (auto s : bp.segments) CHECK((bp.points[s[0]] - bp.points[s[1]]).norm() == doctest::Approx(0.05).epsilon(1e-9));
+}
