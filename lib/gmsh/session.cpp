@@ -1,0 +1,77 @@
+#include "gmsh/session.hpp"
+
+#include <gmsh.h>
+
+#include "core/error.hpp"
+
+namespace quadapt {
+
+namespace {
+int g_sessions = 0;    // live GmshSession objects
+int g_call_depth = 0;  // nested gmsh_call
+}  // namespace
+
+GmshSession::GmshSession(bool verbose) {
+  if (g_sessions == 0) {
+    try {
+      gmsh::initialize(0, nullptr, false);
+      gmsh::option::setNumber("General.Terminal", verbose ? 1 : 0);
+      gmsh::option::setNumber("General.AbortOnError", 0);
+    } catch (const std::string& s) {
+      throw ExternalError("Gmsh: initialisation failed: " + s);
+    }
+  }
+  ++g_sessions;
+  try {
+    gmsh::clear();
+  } catch (const std::string& s) {
+    --g_sessions;
+    if (g_sessions == 0) gmsh::finalize();
+    throw ExternalError("Gmsh: clear failed: " + s);
+  }
+}
+
+GmshSession::~GmshSession() {
+  if (--g_sessions == 0) {
+    try {
+      gmsh::finalize();
+    } catch (...) {
+    }
+  }
+}
+
+void gmsh_call(const std::string& what, const std::function<void()>& body) {
+  if (g_sessions == 0) throw Error("gmsh_call(" + what + ") without a GmshSession");
+  const bool outer = g_call_depth == 0;
+  if (outer) gmsh::logger::start();
+  ++g_call_depth;
+  auto finish = [&]() -> std::string {
+    --g_call_depth;
+    if (!outer) return "";
+    std::vector<std::string> log;
+    try {
+      gmsh::logger::get(log);
+      gmsh::logger::stop();
+    } catch (...) {
+    }
+    for (const std::string& line : log)
+      if (line.rfind("Error", 0) == 0) return line;
+    return "";
+  };
+  try {
+    body();
+  } catch (const Error&) {
+    finish();
+    throw;
+  } catch (const std::string& s) {
+    std::string logged = finish();
+    throw ExternalError("Gmsh: " + what + ": " + (s.empty() ? logged : s));
+  } catch (const std::exception& e) {
+    finish();
+    throw ExternalError("Gmsh: " + what + ": " + e.what());
+  }
+  std::string logged = finish();
+  if (!logged.empty()) throw ExternalError("Gmsh: " + what + ": " + logged);
+}
+
+}  // namespace quadapt
