@@ -1,0 +1,182 @@
+#include "mesh/validate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "mesh/topology.hpp"
+
+namespace quadapt {
+
+namespace {
+
+using Key = std::pair<int, int>;
+Key key(int a, int b) { return a < b ? Key{a, b} : Key{b, a}; }
+
+std::string point(const Vec2& p) {
+  std::ostringstream s;
+  s.precision(6);
+  s << "(" << p.x() << ", " << p.y() << ")";
+  return s.str();
+}
+
+std::string list(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+/// Cell numbers in messages are 1-based, in file order (= the element tag in files quadapt
+/// writes).
+std::string cell_label(const Mesh& m, int c) {
+  return "cell " + std::to_string(c + 1) + " (centroid " + point(cell_centroid(m, c)) + ")";
+}
+
+/// Geometric check of one cell: "" when valid, else the problem.
+/// Corner Jacobian at vertex k: cross(v[k+1] - v[k], v[k-1] - v[k]) (4 det J of the bilinear
+/// map at that corner for a quad, 2 * area for a triangle). Negative: inverted. Zero (below
+/// 1e-12 times the squared longest edge) or zero area: degenerate.
+std::string cell_problem(const Mesh& m, int c) {
+  const Cell& cell = m.cells[c];
+  double longest2 = 0;
+  for (int k = 0; k < cell.nv; ++k)
+    longest2 = std::max(longest2, (m.nodes[cell.v[(k + 1) % cell.nv]] - m.nodes[cell.v[k]]).squaredNorm());
+  const double tol = 1e-12 * longest2;
+  if (longest2 == 0) return "degenerate: all its vertices coincide";
+  for (int k = 0; k < cell.nv; ++k) {
+    const Vec2& p = m.nodes[cell.v[k]];
+    Vec2 a = m.nodes[cell.v[(k + 1) % cell.nv]] - p;
+    Vec2 b = m.nodes[cell.v[(k + cell.nv - 1) % cell.nv]] - p;
+    double j = a.x() * b.y() - a.y() * b.x();
+    if (j < -tol) return "inverted: negative Jacobian at corner " + std::to_string(k + 1) + " " + point(p);
+  }
+  if (cell_area(m, c) <= tol) return "degenerate: zero area";
+  for (int k = 0; k < cell.nv; ++k) {
+    const Vec2& p = m.nodes[cell.v[k]];
+    Vec2 a = m.nodes[cell.v[(k + 1) % cell.nv]] - p;
+    Vec2 b = m.nodes[cell.v[(k + cell.nv - 1) % cell.nv]] - p;
+    if (a.x() * b.y() - a.y() * b.x() <= tol)
+      return "degenerate: zero Jacobian at corner " + std::to_string(k + 1) + " " + point(p) + " (vertices in line)";
+  }
+  return "";
+}
+
+}  // namespace
+
+void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions& opt) {
+  auto fail = [&](const std::string& problem) { throw InputError(path, problem); };
+  const int nc = m.num_cells(), nn = m.num_nodes();
+  if (nc == 0) fail("the mesh has no cells (no triangles or quadrangles)");
+
+  for (int i = 0; i < nn; ++i)
+    if (!std::isfinite(m.nodes[i].x()) || !std::isfinite(m.nodes[i].y()))
+      fail("node " + std::to_string(i + 1) + " has a non-finite coordinate " + point(m.nodes[i]));
+  for (int c = 0; c < nc; ++c) {
+    const Cell& cell = m.cells[c];
+    if (cell.nv != 3 && cell.nv != 4) fail("cell " + std::to_string(c + 1) + " has " + std::to_string(cell.nv) + " vertices");
+    for (int k = 0; k < cell.nv; ++k)
+      if (cell.v[k] < 0 || cell.v[k] >= nn)
+        fail("cell " + std::to_string(c + 1) + " refers to node " + std::to_string(cell.v[k] + 1) + ", which does not exist (" +
+             std::to_string(nn) + " nodes)");
+  }
+
+  const int ntri = m.num_triangles(), nquad = m.num_quads();
+  if (opt.require == CellKind::Quads && ntri > 0) {
+    int c = 0;
+    while (m.cells[c].nv != 3) ++c;
+    fail(cell_label(m, c) + " is a triangle, but quadrilaterals are required (" + std::to_string(ntri) + " triangles, " +
+         std::to_string(nquad) + " quadrilaterals)");
+  }
+  if (opt.require == CellKind::Triangles && nquad > 0) {
+    int c = 0;
+    while (m.cells[c].nv != 4) ++c;
+    fail(cell_label(m, c) + " is a quadrilateral, but triangles are required (" + std::to_string(nquad) +
+         " quadrilaterals, " + std::to_string(ntri) + " triangles)");
+  }
+
+  int bad = 0, first_bad = -1;
+  std::string first_problem;
+  for (int c = 0; c < nc; ++c) {
+    std::string p = cell_problem(m, c);
+    if (p.empty()) continue;
+    if (bad++ == 0) {
+      first_bad = c;
+      first_problem = p;
+    }
+  }
+  if (bad > 0)
+    fail(cell_label(m, first_bad) + " is " + first_problem +
+         (bad > 1 ? " (" + std::to_string(bad) + " invalid cells in all)" : ""));
+
+  const int ng = static_cast<int>(m.groups.size());
+  for (size_t e = 0; e < m.boundary.size(); ++e) {
+    const BoundaryEdge& be = m.boundary[e];
+    if (be.group < 0 || be.group >= ng) fail("boundary edge " + std::to_string(e + 1) + " has no boundary group");
+    for (int v : be.v)
+      if (v < 0 || v >= nn) fail("boundary edge " + std::to_string(e + 1) + " refers to a node that does not exist");
+  }
+
+  Topology topo;
+  try {
+    topo = build_topology(m);
+  } catch (const InputError& e) {
+    std::string what = e.what();
+    if (what.rfind("mesh: ", 0) == 0) what = what.substr(6);
+    fail("invalid topology: " + what);
+  }
+  std::set<Key> free_keys, cell_keys;
+  for (const Face& f : topo.faces) {
+    if (!f.is_boundary()) {
+      if (!opt.allow_hanging_nodes && !f.is_conforming())
+        fail("the mesh is non-conforming (hanging node near " + point(0.5 * (f.a + f.b)) +
+             "), but this tool needs a conforming mesh");
+      continue;
+    }
+    const Cell& c = m.cells[f.cell[0]];
+    free_keys.insert(key(c.v[f.local_edge[0]], c.v[(f.local_edge[0] + 1) % c.nv]));
+  }
+  for (const Cell& c : m.cells)
+    for (int k = 0; k < c.nv; ++k) cell_keys.insert(key(c.v[k], c.v[(k + 1) % c.nv]));
+  for (const BoundaryEdge& be : m.boundary) {
+    const Key k = key(be.v[0], be.v[1]);
+    if (free_keys.count(k)) continue;
+    fail("boundary edge " + point(m.nodes[be.v[0]]) + " - " + point(m.nodes[be.v[1]]) + " of '" + m.groups[be.group].name +
+         "' is not on the boundary of the mesh (" +
+         (cell_keys.count(k) ? "it is an interior edge" : "it is not an edge of any cell") + ")");
+  }
+
+  std::vector<std::string> names;
+  std::vector<int> edges(ng, 0);
+  for (const BoundaryGroup& g : m.groups) names.push_back(g.name);
+  for (const BoundaryEdge& be : m.boundary) ++edges[be.group];
+  for (const std::string& want : opt.required_groups) {
+    int g = m.find_group(want);
+    if (g < 0)
+      fail("boundary '" + want + "' not found (" + (names.empty() ? std::string("the mesh has no boundary groups") : "boundaries: " + list(names)) + ")");
+    if (edges[g] == 0) fail("boundary '" + want + "' has no edges");
+  }
+
+  std::vector<std::string> fields;
+  for (const CellField& f : m.cell_fields) {
+    fields.push_back(f.name);
+    if (f.ncomp < 1 || f.values.size() != static_cast<size_t>(nc) * f.ncomp)
+      fail("field '" + f.name + "' has " + std::to_string(f.values.size()) + " values, expected " + std::to_string(nc) +
+           " cells x " + std::to_string(f.ncomp) + " components");
+  }
+  for (const CellNodeField& f : m.cell_node_fields) {
+    fields.push_back(f.name);
+    if (f.ncomp < 1 || f.per_cell < 1 || f.values.size() != static_cast<size_t>(nc) * f.per_cell * f.ncomp)
+      fail("field '" + f.name + "' has " + std::to_string(f.values.size()) + " values, expected " + std::to_string(nc) +
+           " cells x " + std::to_string(f.per_cell) + " points x " + std::to_string(f.ncomp) + " components");
+    if (f.degree >= 0 && f.per_cell != (f.degree + 1) * (f.degree + 1))
+      fail("field '" + f.name + "' of degree " + std::to_string(f.degree) + " has " + std::to_string(f.per_cell) +
+           " values per cell, expected " + std::to_string((f.degree + 1) * (f.degree + 1)));
+  }
+  for (const std::string& want : opt.required_fields)
+    if (!m.cell_field(want) && !m.cell_node_field(want))
+      fail("field '" + want + "' not found (" + (fields.empty() ? std::string("the file has no fields") : "fields: " + list(fields)) + ")");
+}
+
+}  // namespace quadapt

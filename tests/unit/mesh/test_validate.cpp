@@ -1,0 +1,119 @@
+// validate_mesh: each problem gives one InputError "PATH: problem" naming what is wrong.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "io/msh.hpp"
+#include "mesh/validate.hpp"
+
+using namespace quadapt;
+
+namespace {
+std::string problem(const Mesh& m, const ValidateOptions& opt = {}) {
+  try {
+    validate_mesh(m, "m.msh", opt);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+Mesh hanging() {  // a coarse cell beside two fine cells (2:1), boundary from the builder's names
+  Mesh m;
+  m.nodes = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {1, 0.5}, {1.5, 0}, {1.5, 0.5}, {1.5, 1}};
+  m.cells = {Cell{{0, 1, 2, 3}, 4}, Cell{{1, 5, 6, 4}, 4}, Cell{{4, 6, 7, 2}, 4}};
+  return m;
+}
+}  // namespace
+
+TEST_CASE("valid meshes pass") {
+  CHECK(problem(make_structured_quads(4, 3)) == "");
+  CHECK(problem(make_perturbed_quads(6, 6, 0.3, 2), {CellKind::Quads, false, {"left", "top"}, {}}) == "");
+  CHECK(problem(hanging()) == "");
+}
+
+TEST_CASE("each problem is named") {
+  ValidateOptions quads;
+  quads.require = CellKind::Quads;
+  SUBCASE("no cells") { CHECK(problem(Mesh{}) == "m.msh: the mesh has no cells (no triangles or quadrangles)"); }
+  SUBCASE("non-finite coordinate") {
+    Mesh m = make_structured_quads(2, 2);
+    m.nodes[4].x() = NAN;
+    CHECK(has(problem(m), "m.msh: node 5 has a non-finite coordinate"));
+  }
+  SUBCASE("node index out of range") {
+    Mesh m = make_structured_quads(2, 2);
+    m.cells[3].v[2] = 99;
+    CHECK(problem(m) == "m.msh: cell 4 refers to node 100, which does not exist (9 nodes)");
+  }
+  SUBCASE("a triangle where quads are required") {
+    Mesh m = make_structured_quads(2, 2);
+    m.cells[1].nv = 3;
+    m.cells[1].v[3] = -1;
+    m.cells.push_back(Cell{{1, 5, 4, -1}, 3});
+    m.cells[1].v = {1, 2, 5, -1};
+    CHECK(problem(m) == "");
+    std::string p = problem(m, quads);
+    CHECK(has(p, "m.msh: cell 2 (centroid"));
+    CHECK(has(p, "is a triangle, but quadrilaterals are required (2 triangles, 3 quadrilaterals)"));
+  }
+  SUBCASE("an inverted quad") {
+    Mesh m = make_perturbed_quads(3, 3, 0.1, 1);
+    m.nodes[5] = Vec2(0.9, 0.9);  // interior node (1,1) of the 4x4 node grid pushed past its neighbours
+    std::string p = problem(m);
+    CHECK(has(p, "m.msh: cell"));
+    CHECK(has(p, "is inverted: negative Jacobian at corner"));
+  }
+  SUBCASE("a reversed quad") {
+    Mesh m = make_structured_quads(2, 2);
+    std::swap(m.cells[0].v[1], m.cells[0].v[3]);
+    CHECK(has(problem(m), "m.msh: cell 1 (centroid (0.25, 0.25)) is inverted"));
+  }
+  SUBCASE("a degenerate quad") {
+    Mesh m = make_structured_quads(2, 2);
+    m.nodes[4] = Vec2(0.25, 0.25);  // centre node onto the diagonal of cell 1: corner Jacobian 0
+    std::string p = problem(m);
+    CHECK(has(p, "m.msh: cell 1"));
+    CHECK(has(p, "degenerate"));
+  }
+  SUBCASE("boundary edge in the interior") {
+    Mesh m = make_structured_quads(2, 2);
+    m.boundary.push_back({{1, 4}, 0});
+    CHECK(has(problem(m), "of 'bottom' is not on the boundary of the mesh (it is an interior edge)"));
+    m.boundary.back() = {{0, 8}, 0};
+    CHECK(has(problem(m), "(it is not an edge of any cell)"));
+  }
+  SUBCASE("hanging nodes when a conforming mesh is needed") {
+    ValidateOptions conforming;
+    conforming.allow_hanging_nodes = false;
+    CHECK(has(problem(hanging(), conforming), "non-conforming (hanging node near (1, 0.25))"));
+  }
+  SUBCASE("missing boundary group, missing field, wrong field length") {
+    Mesh m = make_structured_quads(2, 2);
+    ValidateOptions o;
+    o.required_groups = {"inflow"};
+    CHECK(problem(m, o) == "m.msh: boundary 'inflow' not found (boundaries: bottom, right, top, left)");
+    o.required_groups = {};
+    o.required_fields = {"Vinv"};
+    CHECK(problem(m, o) == "m.msh: field 'Vinv' not found (the file has no fields)");
+    m.set_field(CellField{"h", 1, {1, 2, 3, 4}});
+    CHECK(problem(m, o) == "m.msh: field 'Vinv' not found (fields: h)");
+    m.cell_fields[0].values.pop_back();
+    CHECK(problem(m) == "m.msh: field 'h' has 3 values, expected 4 cells x 1 components");
+  }
+}
+
+TEST_CASE("PHiLiP's frame files validate as quad meshes with Vinv") {
+  ValidateOptions o;
+  o.require = CellKind::Quads;
+  o.required_groups = {"bottom", "right", "top", "left"};
+  o.required_fields = {"Vinv"};
+  const std::string dir = std::string(QUADAPT_SHARED_DIR) + "/reference/philip-fixtures/";
+  for (const char* f : {"input_ss15_fb_p1_3.msh", "input_bl15_adj_p2_3.msh"}) {
+    CAPTURE(f);
+    CHECK(problem(read_msh(dir + f), o) == "");
+  }
+}
