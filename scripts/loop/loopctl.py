@@ -1,0 +1,203 @@
+#!/usr/bin/env python3
+"""Small helpers for scripts/loop/run-loop.sh (python3 standard library only).
+
+  loopctl.py get FILE.json KEY [KEY...]     print the values (one per line, '' when absent;
+                                            KEY may be dotted: timings.total)
+  loopctl.py summary SOL.json              one line: cells, dofs, l2_error, functional_error
+  loopctl.py check-case CASE.json           exit 1 with a message unless CASE is a JSON object
+  loopctl.py params OUT/loop.json KEY=VAL.. write/compare the run's parameters (exit 1 on a
+                                            mismatch, naming the differing keys)
+  loopctl.py table OUT [--last K]           assemble OUT/convergence.csv from the step reports
+  loopctl.py stop OUT K MAXDOFS METHOD GROWTH   print 'stop' or 'go' (DOF limit rule, docs/loop.md)
+"""
+import csv
+import io
+import json
+import os
+import sys
+
+# Tool reports that make up one step, in the order they run (report file -> column name).
+# The column t_<tool> is that tool's wall time (report timings.total) in step K; the tools that
+# make step K+1's mesh are timed in step K's row.
+STEP_REPORTS = [
+    ("sol.json", "dgsolve"),
+    ("shape.json", "estimate_frame"),
+    ("dwr.json", "adjoint"),
+    ("frame.json", "size_solve"),
+    ("tri.json", "lpcvt"),
+    ("quad.json", None),  # recombine or bamgquad, by the report's "tool"
+    ("adapted.json", None),  # quadsmooth or refine
+]
+TOOL_COLUMNS = ["dgsolve", "estimate_frame", "adjoint", "size_solve", "lpcvt", "recombine", "bamgquad",
+                "quadsmooth", "refine"]
+COLUMNS = (["step", "cells", "dofs", "l2_error", "functional", "functional_error",
+            "functional_error_estimate", "effectivity", "target_complexity", "continuous_complexity",
+            "t_solve"] + ["t_" + t for t in TOOL_COLUMNS] + ["t_step"])
+
+
+def load(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return None
+
+
+def dig(d, key):
+    for k in key.split("."):
+        if not isinstance(d, dict) or k not in d:
+            return None
+        d = d[k]
+    return d
+
+
+def fmt(v):
+    if v is None:
+        return ""
+    if isinstance(v, bool):
+        return str(int(v))
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        return "%.10g" % v
+    return str(v)
+
+
+def atomic_write(path, text):
+    tmp = "%s.tmp-%d" % (path, os.getpid())
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def cmd_get(args):
+    d = load(args[0])
+    if d is None:
+        sys.exit("loopctl: cannot read JSON %s" % args[0])
+    for k in args[1:]:
+        print(fmt(dig(d, k)))
+
+
+def cmd_summary(args):
+    d = load(args[0]) or {}
+
+    def g(k):
+        v = d.get(k)
+        return "%.3e" % v if isinstance(v, float) else ("-" if v is None else str(v))
+    print("cells=%s dofs=%s l2_error=%s functional_error=%s" % (g("cells"), g("dofs"), g("l2_error"),
+                                                                g("functional_error")))
+
+
+def cmd_check_case(args):
+    path = args[0]
+    try:
+        with open(path) as f:
+            d = json.load(f)
+    except OSError as e:
+        sys.exit("%s: cannot read the case file (%s)" % (path, e.strerror))
+    except ValueError as e:
+        sys.exit("%s: not valid JSON (%s)" % (path, e))
+    if not isinstance(d, dict):
+        sys.exit("%s: a case file must be a JSON object" % path)
+    if "exact" not in d:
+        sys.exit("%s: a case file needs an 'exact' solution expression (DESIGN.md section 3)" % path)
+
+
+def cmd_params(args):
+    path, pairs = args[0], args[1:]
+    new = dict(p.split("=", 1) for p in pairs)
+    old = load(path) if os.path.exists(path) else None
+    if old is None:
+        atomic_write(path, json.dumps(new, indent=1, sort_keys=True) + "\n")
+        return
+    diff = [k for k in sorted(set(old) | set(new)) if old.get(k) != new.get(k)]
+    if diff:
+        lines = ["  %s: was %r, now %r" % (k, old.get(k), new.get(k)) for k in diff]
+        sys.exit("%s: this run directory was made with other parameters:\n%s\n"
+                 "  use another OUT, or delete the directory to start again" % (path, "\n".join(lines)))
+
+
+def row_for(step_dir, k):
+    row = {c: None for c in COLUMNS}
+    row["step"] = k
+    sol = load(os.path.join(step_dir, "sol.json"))
+    if sol is None:
+        return None
+    for c in ["cells", "dofs", "l2_error", "functional", "functional_error"]:
+        row[c] = sol.get(c)
+    row["t_solve"] = sol.get("time_s", dig(sol, "timings.total"))
+    total = 0.0
+    for fname, col in STEP_REPORTS:
+        rep = load(os.path.join(step_dir, fname))
+        if rep is None:
+            continue
+        tool = rep.get("tool", "")
+        name = (col or tool).replace("-", "_")
+        if name not in TOOL_COLUMNS:
+            continue
+        t = dig(rep, "timings.total")
+        if isinstance(t, (int, float)):
+            row["t_" + name] = t
+            total += t
+        if fname == "dwr.json":
+            row["functional_error_estimate"] = rep.get("functional_error_estimate")
+        if fname == "frame.json":
+            row["target_complexity"] = rep.get("target_complexity")
+            row["continuous_complexity"] = rep.get("continuous_complexity")
+    est, err = row["functional_error_estimate"], row["functional_error"]
+    if isinstance(est, (int, float)) and isinstance(err, (int, float)) and err != 0:
+        row["effectivity"] = est / err
+    row["t_step"] = total
+    return row
+
+
+def cmd_table(args):
+    out = args[0]
+    last = None
+    if len(args) >= 3 and args[1] == "--last":
+        last = int(args[2])
+    rows = []
+    k = 0
+    while os.path.isdir(os.path.join(out, "step-%d" % k)) and (last is None or k <= last):
+        r = row_for(os.path.join(out, "step-%d" % k), k)
+        if r is None:
+            break
+        rows.append(r)
+        k += 1
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(COLUMNS)
+    for r in rows:
+        w.writerow([fmt(r[c]) for c in COLUMNS])
+    atomic_write(os.path.join(out, "convergence.csv"), buf.getvalue())
+    print(len(rows))
+
+
+NOMINAL_GROWTH = {"uniform": 4.0, "fixed-fraction": 1.9}
+
+
+def cmd_stop(args):
+    out, k, maxdofs, method, growth = args[0], int(args[1]), float(args[2]), args[3], float(args[4])
+    if maxdofs <= 0:
+        print("go")
+        return
+    sol = load(os.path.join(out, "step-%d" % k, "sol.json"))
+    dofs = float(sol["dofs"])
+    g = NOMINAL_GROWTH.get(method, growth)
+    if k > 0:
+        prev = load(os.path.join(out, "step-%d" % (k - 1), "sol.json"))
+        if prev and prev.get("dofs") and dofs > prev["dofs"]:
+            g = dofs / float(prev["dofs"])
+    print("stop" if dofs >= maxdofs or dofs * g > 1.25 * maxdofs else "go")
+
+
+def main():
+    if len(sys.argv) < 3:
+        sys.exit(__doc__)
+    cmd, args = sys.argv[1], sys.argv[2:]
+    {"get": cmd_get, "summary": cmd_summary, "check-case": cmd_check_case, "params": cmd_params, "table": cmd_table,
+     "stop": cmd_stop}.get(cmd, lambda a: sys.exit("loopctl: unknown command " + cmd))(args)
+
+
+if __name__ == "__main__":
+    main()

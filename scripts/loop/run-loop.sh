@@ -1,0 +1,255 @@
+#!/usr/bin/env bash
+# One adaptive loop (DESIGN.md section 1; docs/loop.md). Called by `make -f Makefile.cases loop`.
+#
+#   run-loop.sh --case CASE.json --mesh START.msh --p P --method lpcvt|bamg|fixed-fraction|uniform
+#               --mode feature|goal --steps N --growth G --out DIR
+#               [--maxdofs N] [--fraction F] [--ff-by FIELD] [--seed S] [--smooth-bamg yes|no]
+#               [--pictures yes|no] [--window x0,x1,y0,y1] [--check-only]
+#
+# Every input is checked, and every tool the method needs is looked up, BEFORE any work starts.
+# Step K lives in DIR/step-K/: mesh.msh (its mesh), sol.msh (dgsolve), then per method
+# shape.msh (estimate-frame), dwr.msh (adjoint, goal mode), frame.msh (size-solve), tri.msh
+# (lpcvt), quad.msh (recombine | bamgquad), adapted.msh (quadsmooth | refine) = the next mesh,
+# each with its JSON report beside it (.json) and the tool's stderr in TOOL.log.
+# Resume: every tool writes atomically, and a tool is skipped when its output and report exist
+# and are not older than its inputs — an interrupted loop continues where it stopped.
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(cd "$here/../.." && pwd)"
+PY="${PYTHON:-}"
+if [ -z "$PY" ]; then
+  if [ -x /usr/bin/python3 ]; then PY=/usr/bin/python3; else PY=python3; fi
+fi
+ctl() { "$PY" "$here/loopctl.py" "$@"; }
+
+die() { echo "loop: error: $*" >&2; exit 2; }
+
+CASE="" MESH="" P="" METHOD="" MODE="" STEPS="" GROWTH="1.5" OUT="" MAXDOFS="0" FRACTION="0.3" FF_BY=""
+SEED="1" SMOOTH_BAMG="yes" PICTURES="yes" WINDOW="" CHECK_ONLY=0
+while [ $# -gt 0 ]; do
+  opt="$1"
+  case "$opt" in
+    --check-only) CHECK_ONLY=1; shift; continue ;;
+  esac
+  [ $# -ge 2 ] || die "option $opt needs a value"
+  val="$2"; shift 2
+  case "$opt" in
+    --case) CASE="$val" ;; --mesh) MESH="$val" ;; --p) P="$val" ;; --method) METHOD="$val" ;;
+    --mode) MODE="$val" ;; --steps) STEPS="$val" ;; --growth) GROWTH="$val" ;; --out) OUT="$val" ;;
+    --maxdofs) MAXDOFS="$val" ;; --fraction) FRACTION="$val" ;; --ff-by) FF_BY="$val" ;;
+    --seed) SEED="$val" ;; --smooth-bamg) SMOOTH_BAMG="$val" ;; --pictures) PICTURES="$val" ;;
+    --window) WINDOW="$val" ;;
+    *) die "unknown option $opt (see docs/loop.md)" ;;
+  esac
+done
+
+# ------------------------------------------------------------------ checks, before any work
+is_uint() { [[ "$1" =~ ^[0-9]+$ ]]; }
+is_num() { [[ "$1" =~ ^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$|^[0-9]+\.$ ]]; }
+
+case "$METHOD" in
+  lpcvt|bamg|fixed-fraction|uniform) ;;
+  "") die "METHOD is not set (METHOD=lpcvt|bamg|fixed-fraction|uniform)" ;;
+  *) die "unknown METHOD '$METHOD' (use lpcvt, bamg, fixed-fraction or uniform)" ;;
+esac
+case "$MODE" in
+  feature|goal) ;;
+  "") die "MODE is not set (MODE=feature|goal)" ;;
+  *) die "unknown MODE '$MODE' (use feature or goal)" ;;
+esac
+[ -n "$CASE" ] || die "CASE is not set (a case file, e.g. CASE=examples/cases/sshock.json)"
+if [ ! -f "$CASE" ] && [[ "$CASE" != */* ]] && [ -f "$root/examples/cases/${CASE%.json}.json" ]; then
+  CASE="$root/examples/cases/${CASE%.json}.json"   # short name: CASE=sshock
+fi
+if [ ! -f "$CASE" ]; then
+  avail="$(cd "$root/examples/cases" 2>/dev/null && ls *.json 2>/dev/null | sed 's/\.json$//' | tr '\n' ' ' || true)"
+  die "unknown CASE '$CASE': no such file${avail:+ (shipped cases: $avail)}"
+fi
+msg="$(ctl check-case "$CASE" 2>&1)" || die "$msg"
+[ -n "$MESH" ] || die "MESH is not set (the start mesh, e.g. MESH=examples/meshes/square16.msh)"
+[ -f "$MESH" ] || die "MESH '$MESH': no such file"
+[[ "$P" =~ ^[1-9]$ ]] || die "P='$P': the DG degree must be an integer 1..9"
+is_uint "$STEPS" || die "STEPS='$STEPS': must be a non-negative integer (number of adaptations)"
+is_num "$GROWTH" && "$PY" -c "import sys; sys.exit(0 if float('$GROWTH') > 1 else 1)" \
+  || die "GROWTH='$GROWTH': must be a number > 1 (complexity growth per step)"
+is_num "$MAXDOFS" || die "MAXDOFS='$MAXDOFS': must be a non-negative number (0 = no limit)"
+is_num "$FRACTION" && "$PY" -c "import sys; f=float('$FRACTION'); sys.exit(0 if 0 < f <= 1 else 1)" \
+  || die "FRACTION='$FRACTION': must be in (0, 1]"
+is_uint "$SEED" || die "SEED='$SEED': must be a non-negative integer"
+[ -n "$OUT" ] || die "OUT is not set (the run directory)"
+case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
+case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
+if [ -z "$FF_BY" ]; then
+  if [ "$MODE" = goal ]; then FF_BY=dwr; else FF_BY=A1; fi
+fi
+
+# tools this loop needs
+tools=(dgsolve)
+case "$METHOD" in
+  uniform) tools+=(refine) ;;
+  fixed-fraction) if [ "$MODE" = goal ]; then tools+=(adjoint refine); else tools+=(estimate-frame refine); fi ;;
+  lpcvt) tools+=(estimate-frame size-solve lpcvt recombine quadsmooth) ;;
+  bamg) tools+=(estimate-frame size-solve bamgquad); [ "$SMOOTH_BAMG" = yes ] && tools+=(quadsmooth) ;;
+esac
+if [ "$MODE" = goal ] && [ "$METHOD" != uniform ] && [[ " ${tools[*]} " != *" adjoint "* ]]; then tools+=(adjoint); fi
+missing=()
+for t in "${tools[@]}"; do command -v "$t" >/dev/null 2>&1 || missing+=("$t"); done
+if [ ${#missing[@]} -gt 0 ]; then
+  die "tool(s) not found: ${missing[*]} (needed by METHOD=$METHOD MODE=$MODE). Build them
+  (cmake --build build --target ${missing[*]}) or point BIN= at the directory that holds them"
+fi
+plots=yes
+if [ "$PICTURES" = yes ]; then
+  command -v meshplot >/dev/null 2>&1 || { echo "loop: note: meshplot not found; no pictures" >&2; plots=no; }
+fi
+[ "$CHECK_ONLY" = 1 ] && { echo "loop: inputs OK (tools: ${tools[*]})"; exit 0; }
+
+# ------------------------------------------------------------------ run directory
+mkdir -p "$OUT" || die "cannot create OUT '$OUT'"
+OUT="$(cd "$OUT" && pwd)"
+CASE="$(cd "$(dirname "$CASE")" && pwd)/$(basename "$CASE")"
+exec 9>"$OUT/.lock"
+flock -n 9 || die "another loop is running in $OUT"
+case_sum="$(sha256sum "$CASE" | cut -c1-16)"
+mesh_sum="$(sha256sum "$MESH" | cut -c1-16)"
+# STEPS and MAXDOFS only say where to stop: a finished run can be continued with more steps.
+msg="$(ctl params "$OUT/loop.json" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
+  method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" \
+  smooth_bamg="$SMOOTH_BAMG" 2>&1)" || die "$msg"
+
+name="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
+say() { echo "[$name] $*"; }
+
+# run_tool STEPDIR LOGNAME OUTPUT INPUTS... -- COMMAND...
+# Skips when OUTPUT and its report exist and no input is newer; else runs COMMAND with its
+# stderr in STEPDIR/LOGNAME.log and prints one line.
+run_tool() {
+  local dir="$1" logname="$2" out="$3"; shift 3
+  local inputs=()
+  while [ "$1" != "--" ]; do inputs+=("$1"); shift; done
+  shift
+  local report="${out%.*}.json" fresh=1 i
+  if [ -s "$out" ] && [ -s "$report" ]; then
+    for i in "${inputs[@]}"; do [ "$i" -nt "$out" ] && fresh=0; done
+  else
+    fresh=0
+  fi
+  if [ $fresh = 1 ]; then
+    return 0
+  fi
+  local t0 t1 rc=0
+  t0=$(date +%s%N)
+  "$@" 2>"$dir/$logname.log" || rc=$?
+  t1=$(date +%s%N)
+  if [ $rc -ne 0 ]; then
+    echo "loop: error: step $(basename "$dir"): $logname failed (exit $rc):" >&2
+    tail -n 5 "$dir/$logname.log" | sed 's/^/    /' >&2
+    echo "  full log: $dir/$logname.log" >&2
+    exit 1
+  fi
+  awk -v n="$name" -v s="$(basename "$dir")" -v t="$logname" -v ns="$((t1 - t0))" \
+    'BEGIN { printf "[%s] %s: %-14s %7.2f s\n", n, s, t, ns / 1e9 }'
+}
+
+link_into() {  # link_into SRC DST: DST = SRC (hard link, else copy), atomically
+  local tmp="$2.tmp-$$"
+  ln -f "$1" "$tmp" 2>/dev/null || cp -f "$1" "$tmp"
+  mv -f "$tmp" "$2"
+}
+
+say "CASE=$(basename "$CASE") P=$P METHOD=$METHOD MODE=$MODE STEPS=$STEPS GROWTH=$GROWTH MAXDOFS=$MAXDOFS -> $OUT"
+mkdir -p "$OUT/step-0"
+if [ ! -s "$OUT/step-0/mesh.msh" ]; then link_into "$MESH" "$OUT/step-0/mesh.msh"; fi
+
+k=0
+last=0
+while :; do
+  d="$OUT/step-$k"
+  mkdir -p "$d"
+  run_tool "$d" dgsolve "$d/sol.msh" "$d/mesh.msh" "$CASE" -- dgsolve "$d/mesh.msh" -c "$CASE" -p "$P" -o "$d/sol.msh"
+  say "step-$k: $(ctl summary "$d/sol.json")"
+  last=$k
+  ctl table "$OUT" --last $k >/dev/null
+  stop=no
+  [ $k -ge "$STEPS" ] && stop=yes
+  [ "$(ctl stop "$OUT" $k "$MAXDOFS" "$METHOD" "$GROWTH")" = stop ] && stop=yes
+  if [ $stop = yes ]; then
+    # goal mode: the adjoint on the final mesh too (its time and the error estimate for the table)
+    if [ "$MODE" = goal ] && [ "$METHOD" != uniform ]; then
+      run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" "$CASE" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
+    fi
+    break
+  fi
+  # ---- adapt: step k -> step k+1's mesh
+  next="$d/adapted.msh"
+  case "$METHOD" in
+    uniform)
+      run_tool "$d" refine "$d/adapted.msh" "$d/mesh.msh" -- refine "$d/mesh.msh" --uniform -o "$d/adapted.msh" ;;
+    fixed-fraction)
+      if [ "$MODE" = goal ]; then
+        run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" "$CASE" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
+        run_tool "$d" refine "$d/adapted.msh" "$d/dwr.msh" -- \
+          refine "$d/dwr.msh" --fraction "$FRACTION" --by "$FF_BY" -o "$d/adapted.msh"
+      else
+        run_tool "$d" estimate-frame "$d/shape.msh" "$d/sol.msh" -- estimate-frame "$d/sol.msh" -o "$d/shape.msh"
+        run_tool "$d" refine "$d/adapted.msh" "$d/shape.msh" -- \
+          refine "$d/shape.msh" --fraction "$FRACTION" --by "$FF_BY" -o "$d/adapted.msh"
+      fi ;;
+    lpcvt|bamg)
+      run_tool "$d" estimate-frame "$d/shape.msh" "$d/sol.msh" -- estimate-frame "$d/sol.msh" -o "$d/shape.msh"
+      if [ "$MODE" = goal ]; then
+        run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" "$CASE" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
+        run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" "$d/dwr.msh" -- \
+          size-solve "$d/shape.msh" --growth "$GROWTH" --dwr "$d/dwr.msh" -o "$d/frame.msh"
+      else
+        run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" -- \
+          size-solve "$d/shape.msh" --growth "$GROWTH" -o "$d/frame.msh"
+      fi
+      if [ "$METHOD" = lpcvt ]; then
+        run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED"
+        run_tool "$d" recombine "$d/quad.msh" "$d/tri.msh" -- recombine "$d/tri.msh" -o "$d/quad.msh"
+        run_tool "$d" quadsmooth "$d/adapted.msh" "$d/quad.msh" -- quadsmooth "$d/quad.msh" -o "$d/adapted.msh"
+      else
+        run_tool "$d" bamgquad "$d/quad.msh" "$d/frame.msh" -- bamgquad "$d/frame.msh" -o "$d/quad.msh"
+        if [ "$SMOOTH_BAMG" = yes ]; then
+          run_tool "$d" quadsmooth "$d/adapted.msh" "$d/quad.msh" -- quadsmooth "$d/quad.msh" -o "$d/adapted.msh"
+        else
+          next="$d/quad.msh"
+        fi
+      fi ;;
+  esac
+  # step k+1's mesh = this step's result (hard link), unless already up to date
+  nd="$OUT/step-$((k + 1))"
+  mkdir -p "$nd"
+  if [ ! -s "$nd/mesh.msh" ] || [ "$next" -nt "$nd/mesh.msh" ]; then link_into "$next" "$nd/mesh.msh"; fi
+  k=$((k + 1))
+done
+
+rows="$(ctl table "$OUT" --last $last)"
+echo "$last" > "$OUT/loop.done.tmp-$$" && mv -f "$OUT/loop.done.tmp-$$" "$OUT/loop.done"
+
+# ------------------------------------------------------------------ pictures (optional)
+if [ "$PICTURES" = yes ] && [ "$plots" = yes ]; then
+  fin="$OUT/step-$last"
+  pic() {  # pic OUTPUT ARGS... (skipped when up to date)
+    local o="$1"; shift
+    if [ ! -s "$o" ] || [ "$fin/sol.msh" -nt "$o" ]; then
+      meshplot "$@" -q -o "$o" --report "$OUT/.meshplot.json" 2>"$OUT/meshplot.log" \
+        || echo "loop: warning: meshplot failed for $o (see $OUT/meshplot.log)" >&2
+    fi
+  }
+  pic "$OUT/final-mesh.png" "$fin/mesh.msh" --title "$name: final mesh, step $last"
+  pic "$OUT/final-solution.png" "$fin/sol.msh" --field u --title "$name: u, step $last"
+  if [ -n "$WINDOW" ]; then
+    pic "$OUT/final-mesh-closeup.png" "$fin/mesh.msh" --window "$WINDOW" --title "$name: close-up, step $last"
+  fi
+  if "$PY" -c "import matplotlib" 2>/dev/null; then
+    "$PY" "$root/scripts/plot/convergence.py" --p "$P" --measure auto --mode "$MODE" \
+      -o "$OUT/convergence.png" "$METHOD=$OUT/convergence.csv" 2>"$OUT/plot.log" \
+      || echo "loop: warning: convergence plot failed (see $OUT/plot.log)" >&2
+  else
+    echo "loop: note: python3 matplotlib not found; no convergence plot" >&2
+  fi
+fi
+say "done: $rows solves; table $OUT/convergence.csv"

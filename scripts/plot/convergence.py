@@ -1,0 +1,117 @@
+#!/usr/bin/python3
+"""Error against DOFs for the runs of one study and degree p (thesis Figs. 6.6, 6.14, 6.22, 6.30).
+
+usage: convergence.py --p P [--mode feature|goal] [--measure auto|l2_error|functional_error]
+                      [--title T] [--thesis FILE.json --thesis-case KEY] -o PICTURE.(png|svg|pdf)
+                      LABEL=convergence.csv [LABEL=convergence.csv ...]
+
+One line per run (LABEL = method name: uniform, fixed-fraction, bamg, lpcvt get fixed colours),
+log-log axes, and the dashed grey guide line of the optimal rate: error ~ h^(p+1) for the L2
+error (feature mode), h^(2p+1) for the functional error (goal mode), with h ~ DOFs^(-1/2).
+With --thesis, the thesis's final-mesh rows for this p are drawn as hollow stars in the
+method's colour. Runs whose table is missing or empty are listed in the legend as "(no data)".
+Needs python3-matplotlib (Debian); run with /usr/bin/python3.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+STYLE = {
+    "uniform": dict(color="#555555", marker="s"),
+    "fixed-fraction": dict(color="#2ca02c", marker="^"),
+    "bamg": dict(color="#1f77b4", marker="o"),
+    "lpcvt": dict(color="#d62728", marker="D"),
+}
+THESIS_METHOD = {"fixed_fraction": "fixed-fraction", "bamg": "bamg", "lpcvt": "lpcvt"}
+
+
+def read_curve(path, measure):
+    pts = []
+    try:
+        with open(path) as f:
+            for row in csv.DictReader(f):
+                try:
+                    n, e = float(row["dofs"]), abs(float(row[measure]))
+                except (KeyError, ValueError, TypeError):
+                    continue
+                if n > 0 and e > 0 and math.isfinite(e):
+                    pts.append((n, e))
+    except OSError:
+        pass
+    return pts
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--p", type=int, required=True)
+    ap.add_argument("--mode", choices=["feature", "goal"], default="feature")
+    ap.add_argument("--measure", default="auto")
+    ap.add_argument("--title", default="")
+    ap.add_argument("--thesis", default="")
+    ap.add_argument("--thesis-case", default="")
+    ap.add_argument("-o", "--output", required=True)
+    ap.add_argument("runs", nargs="+", metavar="LABEL=CSV")
+    a = ap.parse_args()
+    measure = a.measure if a.measure != "auto" else ("functional_error" if a.mode == "goal" else "l2_error")
+    rate = (2 * a.p + 1) if measure == "functional_error" else (a.p + 1)
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.8), dpi=110)
+    all_pts = []
+    for spec in a.runs:
+        if "=" not in spec:
+            sys.exit("convergence.py: run '%s' is not LABEL=CSV" % spec)
+        label, path = spec.split("=", 1)
+        pts = read_curve(path, measure)
+        st = STYLE.get(label, dict(marker="o"))
+        if not pts:
+            ax.plot([], [], label=label + " (no data)", **st)
+            continue
+        all_pts += pts
+        ax.loglog([p[0] for p in pts], [p[1] for p in pts], "-", label=label, markersize=4, linewidth=1.4, **st)
+
+    if a.thesis and a.thesis_case:
+        with open(a.thesis) as f:
+            rows = json.load(f)["cases"][a.thesis_case]["rows"]
+        first = True
+        for r in rows:
+            if r["p"] != a.p:
+                continue
+            m = THESIS_METHOD.get(r["method"], r["method"])
+            ax.loglog([r["dofs"]], [r["error"]], linestyle="none", marker="*", markersize=11,
+                      markerfacecolor="none", markeredgewidth=1.2, color=STYLE.get(m, {}).get("color", "k"),
+                      label="thesis, final mesh" if first else None)
+            all_pts.append((r["dofs"], r["error"]))
+            first = False
+
+    if all_pts:
+        nmin = min(p[0] for p in all_pts)
+        nmax = max(p[0] for p in all_pts)
+        # guide line through the smallest error at the largest DOF count, shifted down by 3x
+        ends = sorted(all_pts, key=lambda p: -p[0])[: max(1, len(all_pts) // 4)]
+        e_anchor = min(p[1] for p in ends) / 3.0
+        xs = [nmin, nmax]
+        ys = [e_anchor * (x / nmax) ** (-rate / 2.0) for x in xs]
+        ax.loglog(xs, ys, "--", color="#999999", linewidth=1.0,
+                  label=r"$\mathcal{O}(h^{%d})$" % rate)
+    ax.set_xlabel("degrees of freedom")
+    ax.set_ylabel(r"$|\mathcal{J}(u) - \mathcal{J}_H(u_H)|$" if measure == "functional_error"
+                  else r"$\|u - u_H\|_{L_2}$")
+    ax.set_title(a.title or ("p = %d" % a.p))
+    ax.grid(True, which="both", linewidth=0.3, alpha=0.5)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    tmp = "%s.tmp-%d%s" % (os.path.splitext(a.output)[0], os.getpid(), os.path.splitext(a.output)[1])
+    fig.savefig(tmp)
+    os.replace(tmp, a.output)
+
+
+if __name__ == "__main__":
+    main()

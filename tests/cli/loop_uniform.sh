@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# Makefile.cases `loop` end to end with METHOD=uniform (dgsolve + refine): convergence.csv columns
+# and falling error, resume after deleting the last step, the parameter guard, and bad-input
+# messages before any work. SKIPS (exit 0) while a needed tool is not built.
+set -euo pipefail
+SRC="${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}"
+BIN="${QUADAPT_BIN_DIR:-$SRC/build/bin}"
+export PATH="$BIN:$PATH"
+for t in dgsolve refine; do
+  command -v "$t" >/dev/null || { echo "SKIPPED: $t not built"; exit 0; }
+done
+command -v gmsh >/dev/null || { echo "SKIPPED: gmsh (the program) not installed"; exit 0; }
+PY=/usr/bin/python3; [ -x "$PY" ] || PY=python3
+T="$(mktemp -d)"; trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+MK=(make --no-print-directory -f "$SRC/Makefile.cases" BIN="$BIN")
+
+# a user's own case file and start mesh (4x4 grid with the unit square's boundary names)
+cat > "$T/smooth.json" <<'JSON'
+{ "diffusion": [[1, 0], [0, 1]], "advection": [1, 0.5],
+  "exact": "sin(pi*x)*sin(pi*y) + x*y", "functional": {"boundary": "right"} }
+JSON
+cat > "$T/sq.geo" <<'GEO'
+Point(1) = {0,0,0}; Point(2) = {1,0,0}; Point(3) = {1,1,0}; Point(4) = {0,1,0};
+Line(1) = {1,2}; Line(2) = {2,3}; Line(3) = {3,4}; Line(4) = {4,1};
+Curve Loop(1) = {1,2,3,4}; Plane Surface(1) = {1};
+Transfinite Curve{1,2,3,4} = 5; Transfinite Surface{1}; Recombine Surface{1};
+Physical Curve("bottom") = {1}; Physical Curve("right") = {2}; Physical Curve("top") = {3};
+Physical Curve("left") = {4}; Physical Surface("domain") = {1};
+GEO
+gmsh -2 -format msh41 -o "$T/sq4.msh" "$T/sq.geo" >/dev/null 2>&1 || fail "gmsh could not mesh the square"
+
+LOOP=(CASE="$T/smooth.json" MESH="$T/sq4.msh" P=1 METHOD=uniform MODE=feature STEPS=2 GROWTH=1.5
+      OUT="$T/run" PICTURES=no)
+
+# ---- 1. a 2-step loop
+"${MK[@]}" loop "${LOOP[@]}" > "$T/log1.txt" 2>&1 || { cat "$T/log1.txt"; fail "loop failed"; }
+csv="$T/run/convergence.csv"
+[ -s "$csv" ] || fail "no convergence.csv"
+for k in 0 1 2; do [ -s "$T/run/step-$k/sol.msh" ] || fail "no step-$k/sol.msh"; done
+[ -s "$T/run/step-1/adapted.msh" ] && [ -s "$T/run/step-0/refine.log" ] || fail "step files missing"
+[ -e "$T/run/step-2/adapted.msh" ] && fail "the last step must not be adapted"
+"$PY" - "$csv" <<'PYEOF' || fail "convergence table"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+need = ["step", "cells", "dofs", "l2_error", "functional_error", "t_dgsolve", "t_refine", "t_solve"]
+missing = [c for c in need if c not in rows[0]]
+assert not missing, "missing columns %s" % missing
+assert [int(r["step"]) for r in rows] == [0, 1, 2], rows
+cells = [int(r["cells"]) for r in rows]
+assert cells == [16, 64, 256], cells
+assert [int(r["dofs"]) for r in rows] == [4 * c for c in cells]
+e = [float(r["l2_error"]) for r in rows]
+assert e[0] > e[1] > e[2] > 0, e
+rate = [(e[i] / e[i + 1]) for i in range(2)]
+assert rate[-1] > 2.5, "uniform refinement at p=1 should reduce the L2 error ~4x: %s" % rate
+assert float(rows[0]["t_refine"]) > 0 and rows[2]["t_refine"] == "", rows
+PYEOF
+
+# ---- 2. resume: delete the last step, rerun -> the same table (times aside); step 0 is not redone
+strip() { "$PY" -c "import csv,sys
+for r in csv.DictReader(open(sys.argv[1])): print({k: v for k, v in r.items() if not k.startswith('t_')})" "$1"; }
+strip "$csv" > "$T/table1.txt"
+before="$(stat -c %Y.%N "$T/run/step-0/sol.msh")"
+rm -rf "$T/run/step-2"
+"${MK[@]}" loop "${LOOP[@]}" > "$T/log2.txt" 2>&1 || { cat "$T/log2.txt"; fail "resumed loop failed"; }
+strip "$csv" > "$T/table2.txt"
+diff "$T/table1.txt" "$T/table2.txt" >&2 || fail "resumed table differs"
+[ "$before" = "$(stat -c %Y.%N "$T/run/step-0/sol.msh")" ] || fail "step 0 was recomputed on resume"
+grep -q "step-2: dgsolve" "$T/log2.txt" || fail "step 2 was not recomputed"
+grep -q "step-0: dgsolve" "$T/log2.txt" && fail "step 0's dgsolve ran again"
+# the same OUT with other parameters is refused
+rc=0; "${MK[@]}" loop "${LOOP[@]}" P=2 > "$T/log3.txt" 2>&1 || rc=$?
+[ $rc -ne 0 ] && grep -q "other parameters" "$T/log3.txt" || { cat "$T/log3.txt"; fail "parameter guard"; }
+
+# ---- 3. bad input: a clear message and no run directory
+bad() {  # bad PATTERN VAR=VALUE...
+  local pat="$1"; shift
+  local rc=0
+  "${MK[@]}" loop "${LOOP[@]}" OUT="$T/bad" "$@" > "$T/bad.txt" 2>&1 || rc=$?
+  [ $rc -ne 0 ] || fail "loop $* succeeded"
+  grep -q -- "$pat" "$T/bad.txt" || { cat "$T/bad.txt" >&2; fail "message for '$*' lacks '$pat'"; }
+  [ ! -e "$T/bad" ] || fail "loop $* created its OUT before failing"
+}
+bad "unknown METHOD 'simplex'" METHOD=simplex
+bad "unknown MODE 'magic'" MODE=magic
+bad "unknown CASE '$T/nope.json'" CASE="$T/nope.json"
+echo '{"exact": ' > "$T/broken.json"
+bad "not valid JSON" CASE="$T/broken.json"
+bad "MESH '$T/none.msh': no such file" MESH="$T/none.msh"
+bad "P='x'" P=x
+bad "STEPS='-1'" STEPS=-1
+# a missing tool: only dgsolve and refine on PATH
+mkdir "$T/fakebin"
+ln -s "$(command -v dgsolve)" "$T/fakebin/dgsolve"; ln -s "$(command -v refine)" "$T/fakebin/refine"
+rc=0
+PATH="/usr/bin:/bin" make --no-print-directory -f "$SRC/Makefile.cases" BIN="$T/fakebin" loop "${LOOP[@]}" \
+  OUT="$T/bad" METHOD=lpcvt > "$T/bad.txt" 2>&1 || rc=$?
+[ $rc -ne 0 ] && grep -q "tool(s) not found: estimate-frame size-solve lpcvt recombine quadsmooth" "$T/bad.txt" \
+  || { cat "$T/bad.txt" >&2; fail "missing-tool message"; }
+[ ! -e "$T/bad" ] || fail "missing tool: OUT created"
+echo "loop (uniform) CLI: all checks passed"
