@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/topology.hpp"
+#include "mesh/validate.hpp"
 #include "refine/balance.hpp"
 #include "refine/cell_edges.hpp"
 #include "refine/fixed_fraction.hpp"
@@ -34,9 +35,13 @@ std::map<int, double> boundary_length_per_group(const Mesh& m) {
 ///  - every interior face conforming or one half of a coarse edge split at its midpoint into
 ///    exactly two faces (a 4:1 edge would leave unmatched pieces, which build_topology reports as
 ///    boundary faces without a group: none may exist);
+///  - the foundation's validate_mesh (all quads, hanging nodes allowed) accepts it;
 ///  - the boundary faces are exactly the Mesh::boundary edges (same groups) and each group keeps
 ///    its length.
 void check_mesh(const Mesh& m, double area, const std::map<int, double>& group_len) {
+  ValidateOptions vo;
+  vo.require = CellKind::Quads;
+  CHECK_NOTHROW(validate_mesh(m, "refined", vo));
   for (int c = 0; c < m.num_cells(); ++c) {
     REQUIRE(m.cells[c].is_quad());
     REQUIRE(cell_area(m, c) > 0);
