@@ -1,0 +1,71 @@
+#pragma once
+// Block-sparse matrices with dense square blocks (one block per pair of face-neighbour cells in
+// a DG matrix), their OpenMP product with a vector, and the block ILU(0) preconditioner.
+//
+// Storage: block CSR. Block row I holds the blocks (I, J) for J in cols[row_start[I] ..
+// row_start[I+1]), sorted; each block is nb x nb, column-major, at values + k * nb * nb.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+namespace quadapt {
+
+class BlockSparseMatrix {
+ public:
+  BlockSparseMatrix() = default;
+  /// Converts a compressed-column sparse matrix whose size is a multiple of nb. Entries missing
+  /// from a block that has some entry are stored as zeros.
+  BlockSparseMatrix(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& A, int nb);
+
+  int block_size() const { return nb_; }
+  int block_rows() const { return nbr_; }
+  int rows() const { return nbr_ * nb_; }
+  long long num_blocks() const { return static_cast<long long>(cols_.size()); }
+
+  /// y = A x (parallel over block rows, deterministic).
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+
+  const std::vector<long long>& row_start() const { return row_start_; }
+  const std::vector<int>& cols() const { return cols_; }
+  const double* block(long long k) const { return values_.data() + k * nb_ * nb_; }
+  double* block(long long k) { return values_.data() + k * nb_ * nb_; }
+  /// Index k of block (I, J), or -1.
+  long long find(int I, int J) const;
+
+ private:
+  int nb_ = 0, nbr_ = 0;
+  std::vector<long long> row_start_;
+  std::vector<int> cols_;
+  std::vector<double> values_;
+};
+
+/// Block incomplete LU with zero fill (ILU(0) on the block pattern, dense blocks) in the
+/// matrix's block order: A ~ L U, L unit block-lower, U block-upper. apply() solves L U z = r.
+/// The factorisation is sequential; its quality depends on the cell order (a downwind or
+/// row-by-row order is best for advection).
+class BlockILU0 {
+ public:
+  BlockILU0() = default;
+  explicit BlockILU0(const BlockSparseMatrix& A) { compute(A); }
+  void compute(const BlockSparseMatrix& A);
+  void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+
+ private:
+  BlockSparseMatrix LU_;                ///< L below, U above the diagonal; diagonal = inv(U_II)
+  std::vector<long long> diag_;         ///< index of the diagonal block per row
+};
+
+/// Block Jacobi: z = inv(A_II) r_I per block row.
+class BlockJacobi {
+ public:
+  BlockJacobi() = default;
+  explicit BlockJacobi(const BlockSparseMatrix& A) { compute(A); }
+  void compute(const BlockSparseMatrix& A);
+  void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+
+ private:
+  int nb_ = 0;
+  std::vector<double> inv_;
+};
+
+}  // namespace quadapt

@@ -1,0 +1,552 @@
+#include "dg/discretization.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+
+namespace quadapt {
+
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+/// Values l[i] and derivatives dl[i] of the Lagrange polynomials through `nodes` at x.
+void lagrange_1d(const std::vector<double>& nodes, double x, double* l, double* dl) {
+  const int n = static_cast<int>(nodes.size());
+  for (int i = 0; i < n; ++i) {
+    double v = 1, d = 0;
+    for (int m = 0; m < n; ++m) {
+      if (m == i) continue;
+      double g = 1.0 / (nodes[i] - nodes[m]);
+      double f = (x - nodes[m]) * g;
+      d = d * f + v * g;
+      v *= f;
+    }
+    l[i] = v;
+    dl[i] = d;
+  }
+}
+
+/// Bilinear map x(xi, eta) = a0 + a1 xi + a2 eta + a3 xi eta of a straight-sided quad.
+struct QuadGeo {
+  Vec2 a0, a1, a2, a3;
+  explicit QuadGeo(const Mesh& m, int c) {
+    const Cell& cell = m.cells[c];
+    const Vec2 &X0 = m.nodes[cell.v[0]], &X1 = m.nodes[cell.v[1]], &X2 = m.nodes[cell.v[2]],
+               &X3 = m.nodes[cell.v[3]];
+    a0 = 0.25 * (X0 + X1 + X2 + X3);
+    a1 = 0.25 * (-X0 + X1 + X2 - X3);
+    a2 = 0.25 * (-X0 - X1 + X2 + X3);
+    a3 = 0.25 * (X0 - X1 + X2 - X3);
+  }
+  Vec2 map(double xi, double eta) const { return a0 + a1 * xi + a2 * eta + a3 * (xi * eta); }
+  /// Columns of the Jacobian: t1 = dx/dxi, t2 = dx/deta; returns det.
+  double jac(double xi, double eta, Vec2& t1, Vec2& t2) const {
+    t1 = a1 + a3 * eta;
+    t2 = a2 + a3 * xi;
+    return t1.x() * t2.y() - t1.y() * t2.x();
+  }
+};
+
+/// Reference coordinates of edge parameter s (0 at v[e], 1 at v[e+1]) on local edge e.
+inline void edge_point(int e, double s, double& xi, double& eta) {
+  switch (e) {
+    case 0: xi = -1 + 2 * s; eta = -1; break;
+    case 1: xi = 1; eta = -1 + 2 * s; break;
+    case 2: xi = 1 - 2 * s; eta = 1; break;
+    default: xi = -1; eta = 1 - 2 * s; break;
+  }
+}
+
+}  // namespace
+
+// ============================================================================ Impl
+
+struct DGDiscretization::Impl {
+  int p = 1, n1 = 2, nb = 4;
+  std::vector<double> gll;     // GLL nodes
+  Rule1D gv;                   // volume / face Gauss rule
+  int nq = 0, Q = 0;
+  MatrixXd V, Gxi, Geta;       // Q x nb reference tables (q = q1 + nq q2)
+  std::vector<QuadGeo> geo;
+  std::vector<double> area;
+  std::vector<std::array<double, 4>> height;  // |K| / |edge e|
+  std::vector<std::vector<int>> rows;         // block pattern: sorted row cells of column cell c
+  std::vector<long long> col_start;           // first nnz of cell c's block column
+  long long nnz = 0;
+};
+
+DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, const DGOptions& opt)
+    : mesh_(mesh), cs_(cs), p_(p), nb_((p + 1) * (p + 1)), opt_(opt) {
+  if (p < 1 || p > 8) throw InputError("degree p = " + std::to_string(p) + " is out of range (1..8)");
+  if (mesh.num_cells() == 0) throw InputError("mesh: no cells");
+  if (!mesh.all_quads())
+    throw InputError("mesh: " + std::to_string(mesh.num_triangles()) +
+                     " triangles; the DG solver needs an all-quad mesh (use recombine)");
+  if (opt_.extra_points < 1) opt_.extra_points = 1;
+  topo_ = build_topology(mesh);
+  exact_ = std::make_unique<ExactSolution>(cs);
+  impl_ = std::make_unique<Impl>();
+  Impl& I = *impl_;
+  I.p = p;
+  I.n1 = p + 1;
+  I.nb = nb_;
+  LagrangeBasis1D basis(p);
+  I.gll = basis.nodes();
+  I.nq = p + 1 + opt_.extra_points;
+  I.gv = gauss_legendre(I.nq);
+  I.Q = I.nq * I.nq;
+  I.V.resize(I.Q, nb_);
+  I.Gxi.resize(I.Q, nb_);
+  I.Geta.resize(I.Q, nb_);
+  {
+    std::vector<std::vector<double>> l(I.nq, std::vector<double>(I.n1)), dl = l;
+    for (int q = 0; q < I.nq; ++q) lagrange_1d(I.gll, I.gv.x[q], l[q].data(), dl[q].data());
+    for (int q2 = 0; q2 < I.nq; ++q2)
+      for (int q1 = 0; q1 < I.nq; ++q1)
+        for (int j = 0; j < I.n1; ++j)
+          for (int i = 0; i < I.n1; ++i) {
+            int q = q1 + I.nq * q2, a = i + I.n1 * j;
+            I.V(q, a) = l[q1][i] * l[q2][j];
+            I.Gxi(q, a) = dl[q1][i] * l[q2][j];
+            I.Geta(q, a) = l[q1][i] * dl[q2][j];
+          }
+  }
+  const int nc = mesh.num_cells();
+  I.geo.reserve(nc);
+  I.area.resize(nc);
+  I.height.resize(nc);
+  for (int c = 0; c < nc; ++c) {
+    I.geo.emplace_back(mesh, c);
+    double a = 0;
+    for (int q2 = 0; q2 < I.nq; ++q2)
+      for (int q1 = 0; q1 < I.nq; ++q1) {
+        Vec2 t1, t2;
+        double det = I.geo[c].jac(I.gv.x[q1], I.gv.x[q2], t1, t2);
+        if (!(det > 0)) {
+          Vec2 ctr = I.geo[c].a0;
+          throw InputError("mesh: cell " + std::to_string(c) + " near (" + std::to_string(ctr.x()) + ", " +
+                           std::to_string(ctr.y()) + ") is inverted or degenerate (Jacobian " +
+                           std::to_string(det) + ")");
+        }
+        a += I.gv.w[q1] * I.gv.w[q2] * det;
+      }
+    I.area[c] = a;
+    const Cell& cell = mesh.cells[c];
+    for (int e = 0; e < 4; ++e) {
+      double len = (mesh.nodes[cell.v[(e + 1) % 4]] - mesh.nodes[cell.v[e]]).norm();
+      I.height[c][e] = a / len;
+    }
+  }
+
+  // Boundary conditions per face.
+  face_dirichlet_.assign(topo_.faces.size(), 0);
+  for (size_t fi = 0; fi < topo_.faces.size(); ++fi) {
+    const Face& f = topo_.faces[fi];
+    if (!f.is_boundary()) continue;
+    std::string name = f.group >= 0 ? mesh.groups[f.group].name : std::string();
+    face_dirichlet_[fi] = cs.is_dirichlet(name) ? 1 : 0;
+  }
+  if (cs.has_functional()) {
+    functional_group_ = mesh.find_group(cs.functional_boundary);
+    if (functional_group_ < 0)
+      throw InputError(cs.path, "functional boundary '" + cs.functional_boundary +
+                                    "' is not a boundary group of the mesh");
+  }
+
+  // Block pattern and column offsets.
+  I.rows.resize(nc);
+  for (int c = 0; c < nc; ++c) {
+    std::vector<int>& r = I.rows[c];
+    r.push_back(c);
+    for (int fi : topo_.cell_faces[c]) {
+      const Face& f = topo_.faces[fi];
+      if (f.is_boundary()) continue;
+      r.push_back(f.cell[0] == c ? f.cell[1] : f.cell[0]);
+    }
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+  }
+  I.col_start.resize(nc + 1);
+  I.col_start[0] = 0;
+  for (int c = 0; c < nc; ++c)
+    I.col_start[c + 1] = I.col_start[c] + static_cast<long long>(nb_) * nb_ * I.rows[c].size();
+  I.nnz = I.col_start[nc];
+  if (I.nnz > 2000000000LL) throw InputError("problem too large for 32-bit sparse indices");
+}
+
+DGDiscretization::~DGDiscretization() = default;
+
+// ============================================================================ assembly
+
+void DGDiscretization::assemble(SparseMatrixCSC& A, Eigen::VectorXd& b) const {
+  const Impl& I = *impl_;
+  const int nc = mesh_.num_cells(), nb = nb_, n1 = I.n1, nq = I.nq, Q = I.Q;
+  const int N = num_dofs();
+  A.resize(N, N);
+  A.resizeNonZeros(static_cast<Eigen::Index>(I.nnz));
+  int* outer = A.outerIndexPtr();
+  int* inner = A.innerIndexPtr();
+  double* val = A.valuePtr();
+  b.setZero(N);
+  outer[N] = static_cast<int>(I.nnz);
+
+  const Eigen::Matrix2d D = cs_.diffusion;
+  const Vec2 cvec = cs_.advection;
+  const bool diff = !cs_.advection_only();
+  const bool adv = !cvec.isZero(0.0);
+  const double pen_base = opt_.penalty_factor * p_ * (p_ + 1);
+  const int nf = nq;  // face Gauss points
+  const Rule1D& g = I.gv;
+
+#pragma omp parallel
+  {
+    const int kvol = (diff ? 2 : 0) + (adv ? 1 : 0);
+    MatrixXd Dx(Q, nb), Dy(Q, nb), L(kvol * Q, nb), R(kvol * Q, nb);
+    VectorXd W(Q), f(Q), rhs(nb);
+    std::vector<MatrixXd> blk;
+    MatrixXd Phi[2], Nn[2], FL(2 * nf, nb), FR(2 * nf, nb), B(nb, nb);
+    for (int k = 0; k < 2; ++k) {
+      Phi[k].resize(nf, nb);
+      Nn[k].resize(nf, nb);
+    }
+    VectorXd Wf(nf), gD(nf), gN(nf);
+    std::vector<double> scratch(exact_->scratch_size());
+    std::vector<double> lx(n1), dlx(n1), ly(n1), dly(n1);
+    double ex[ExactSolution::NUM_OUTPUTS];
+
+    // Trace of side k of face f at the face Gauss points: values Phi[k] and normal fluxes
+    // Nn[k] = (D grad phi) . n with n the side-0 normal.
+    auto trace = [&](const Face& fc, int k, const Vec2& Dn) {
+      const int c = fc.cell[k], e = fc.local_edge[k];
+      const QuadGeo& G = I.geo[c];
+      for (int q = 0; q < nf; ++q) {
+        double t = 0.5 * (g.x[q] + 1);
+        double s = fc.s_a[k] + t * (fc.s_b[k] - fc.s_a[k]);
+        double xi, eta;
+        edge_point(e, s, xi, eta);
+        lagrange_1d(I.gll, xi, lx.data(), dlx.data());
+        lagrange_1d(I.gll, eta, ly.data(), dly.data());
+        if (diff) {
+          Vec2 t1, t2;
+          double det = G.jac(xi, eta, t1, t2);
+          // grad phi = J^-T (dphi/dxi, dphi/deta); project on D n.
+          double cxi = (t2.y() * Dn.x() - t2.x() * Dn.y()) / det;
+          double ceta = (-t1.y() * Dn.x() + t1.x() * Dn.y()) / det;
+          for (int j = 0; j < n1; ++j)
+            for (int i = 0; i < n1; ++i) {
+              int a = i + n1 * j;
+              Phi[k](q, a) = lx[i] * ly[j];
+              Nn[k](q, a) = cxi * dlx[i] * ly[j] + ceta * lx[i] * dly[j];
+            }
+        } else {
+          for (int j = 0; j < n1; ++j)
+            for (int i = 0; i < n1; ++i) Phi[k](q, i + n1 * j) = lx[i] * ly[j];
+        }
+      }
+    };
+
+#pragma omp for schedule(dynamic, 32)
+    for (int c = 0; c < nc; ++c) {
+      const std::vector<int>& rows = I.rows[c];
+      const int nr = static_cast<int>(rows.size());
+      if (static_cast<int>(blk.size()) < nr) blk.resize(nr);
+      for (int k = 0; k < nr; ++k) blk[k].setZero(nb, nb);
+      const int kd = static_cast<int>(std::lower_bound(rows.begin(), rows.end(), c) - rows.begin());
+      auto pos = [&](int cell) {
+        return static_cast<int>(std::lower_bound(rows.begin(), rows.end(), cell) - rows.begin());
+      };
+
+      // ---------------------------------------------------------------- volume
+      const QuadGeo& G = I.geo[c];
+      for (int q2 = 0; q2 < nq; ++q2)
+        for (int q1 = 0; q1 < nq; ++q1) {
+          const int q = q1 + nq * q2;
+          Vec2 t1, t2;
+          double det = G.jac(g.x[q1], g.x[q2], t1, t2);
+          W[q] = g.w[q1] * g.w[q2] * det;
+          Vec2 x = G.map(g.x[q1], g.x[q2]);
+          exact_->eval(x.x(), x.y(), ex, scratch.data());
+          f[q] = -ex[ExactSolution::S];
+          double inv = 1.0 / det;
+          double jxx = t2.y() * inv, jxe = -t1.y() * inv, jyx = -t2.x() * inv, jye = t1.x() * inv;
+          Dx.row(q) = jxx * I.Gxi.row(q) + jxe * I.Geta.row(q);
+          Dy.row(q) = jyx * I.Gxi.row(q) + jye * I.Geta.row(q);
+        }
+      {
+        int off = 0;
+        if (diff) {
+          L.middleRows(0, Q) = Dx;
+          L.middleRows(Q, Q) = Dy;
+          R.middleRows(0, Q) = W.asDiagonal() * (D(0, 0) * Dx + D(0, 1) * Dy);
+          R.middleRows(Q, Q) = W.asDiagonal() * (D(1, 0) * Dx + D(1, 1) * Dy);
+          off = 2 * Q;
+        }
+        if (adv) {
+          L.middleRows(off, Q) = cvec.x() * Dx + cvec.y() * Dy;
+          R.middleRows(off, Q) = -(W.asDiagonal() * I.V);
+        }
+        blk[kd].noalias() += L.transpose() * R;
+        rhs.noalias() = I.V.transpose() * W.cwiseProduct(f);
+      }
+
+      // ---------------------------------------------------------------- faces
+      for (int fi : topo_.cell_faces[c]) {
+        const Face& fc = topo_.faces[fi];
+        const Vec2& n = fc.normal;
+        const Vec2 Dn = D * n;
+        const double nDn = n.dot(Dn);
+        const double cn = cvec.dot(n);
+        for (int q = 0; q < nf; ++q) Wf[q] = 0.5 * g.w[q] * fc.length;
+        if (fc.is_boundary()) {
+          // c is side 0; n is outward.
+          trace(fc, 0, Dn);
+          for (int q = 0; q < nf; ++q) {
+            double t = 0.5 * (g.x[q] + 1);
+            Vec2 x = fc.a + t * (fc.b - fc.a);
+            exact_->eval(x.x(), x.y(), ex, scratch.data());
+            gD[q] = ex[ExactSolution::U];
+            gN[q] = Dn.x() * ex[ExactSolution::UX] + Dn.y() * ex[ExactSolution::UY];
+          }
+          const double cplus = std::max(cn, 0.0), cminus = std::min(cn, 0.0);
+          if (diff && face_dirichlet_[fi]) {
+            const double pen = pen_base * nDn / I.height[c][fc.local_edge[0]];
+            FL.topRows(nf) = Phi[0];
+            FL.bottomRows(nf) = Nn[0];
+            FR.topRows(nf) = Wf.asDiagonal() * (-Nn[0] + (pen + cplus) * Phi[0]);
+            FR.bottomRows(nf) = -(Wf.asDiagonal() * Phi[0]);
+            blk[kd].noalias() += FL.transpose() * FR;
+            VectorXd wg = Wf.cwiseProduct(gD);
+            rhs.noalias() += (pen - cminus) * (Phi[0].transpose() * wg) - Nn[0].transpose() * wg;
+          } else {
+            // Natural: Neumann data D grad u_exact . n, upwind advection with outside state u_exact.
+            if (cplus > 0) blk[kd].noalias() += cplus * (Phi[0].transpose() * (Wf.asDiagonal() * Phi[0]));
+            if (!diff) gN.setZero();
+            VectorXd data = Wf.cwiseProduct(gN - cminus * gD);
+            rhs.noalias() += Phi[0].transpose() * data;
+          }
+          continue;
+        }
+        const int j = fc.cell[0] == c ? 0 : 1;  // trial side (this cell)
+        const int i = 1 - j;                    // the neighbour's side
+        const int other = fc.cell[i];
+        trace(fc, 0, Dn);
+        trace(fc, 1, Dn);
+        const double sgn[2] = {1.0, -1.0};
+        const double up[2] = {cn >= 0 ? 1.0 : 0.0, cn >= 0 ? 0.0 : 1.0};
+        const double h = std::min(I.height[fc.cell[0]][fc.local_edge[0]], I.height[fc.cell[1]][fc.local_edge[1]]);
+        const double pen = diff ? pen_base * nDn / h : 0.0;
+        for (int ti : {j, i}) {  // test side
+          const double alpha = pen * sgn[ti] * sgn[j] + sgn[ti] * up[j] * cn;
+          if (diff) {
+            FL.topRows(nf) = Phi[ti];
+            FL.bottomRows(nf) = Nn[ti];
+            FR.topRows(nf) = Wf.asDiagonal() * (-0.5 * sgn[ti] * Nn[j] + alpha * Phi[j]);
+            FR.bottomRows(nf) = (-0.5 * sgn[j]) * (Wf.asDiagonal() * Phi[j]);
+            B.noalias() = FL.transpose() * FR;
+          } else {
+            B.noalias() = alpha * (Phi[ti].transpose() * (Wf.asDiagonal() * Phi[j]));
+          }
+          blk[ti == j ? kd : pos(other)] += B;
+        }
+      }
+
+      // ---------------------------------------------------------------- scatter
+      const long long len = static_cast<long long>(nr) * nb;
+      for (int bcol = 0; bcol < nb; ++bcol) {
+        long long base = I.col_start[c] + bcol * len;
+        outer[c * nb + bcol] = static_cast<int>(base);
+        for (int k = 0; k < nr; ++k) {
+          const int r0 = rows[k] * nb;
+          const double* src = blk[k].data() + static_cast<long long>(bcol) * nb;
+          for (int a = 0; a < nb; ++a) {
+            inner[base + k * nb + a] = r0 + a;
+            val[base + k * nb + a] = src[a];
+          }
+        }
+      }
+      b.segment(static_cast<long long>(c) * nb, nb) = rhs;
+    }
+  }
+}
+
+Eigen::VectorXd DGDiscretization::residual(const Eigen::VectorXd& U) const {
+  SparseMatrixCSC A;
+  VectorXd b;
+  assemble(A, b);
+  return A * U - b;
+}
+
+// ============================================================================ post-processing
+
+std::vector<double> DGDiscretization::cell_l2_errors_squared(const Eigen::VectorXd& U) const {
+  const Impl& I = *impl_;
+  const int nc = mesh_.num_cells(), n1 = I.n1;
+  const int ne = opt_.error_points > 0 ? opt_.error_points : std::max(2 * p_ + 4, 10);
+  Rule1D ge = gauss_legendre(ne);
+  MatrixXd T(ne, n1);
+  {
+    std::vector<double> l(n1), dl(n1);
+    for (int q = 0; q < ne; ++q) {
+      lagrange_1d(I.gll, ge.x[q], l.data(), dl.data());
+      for (int i = 0; i < n1; ++i) T(q, i) = l[i];
+    }
+  }
+  std::vector<double> err(nc);
+#pragma omp parallel
+  {
+    std::vector<double> scratch(exact_->scratch_size());
+    double ex[ExactSolution::NUM_OUTPUTS];
+    MatrixXd Uq(ne, ne);
+#pragma omp for schedule(static)
+    for (int c = 0; c < nc; ++c) {
+      Eigen::Map<const MatrixXd> Uc(U.data() + static_cast<long long>(c) * nb_, n1, n1);
+      Uq.noalias() = T * Uc * T.transpose();
+      const QuadGeo& G = I.geo[c];
+      double s = 0;
+      for (int q2 = 0; q2 < ne; ++q2)
+        for (int q1 = 0; q1 < ne; ++q1) {
+          Vec2 t1, t2;
+          double det = G.jac(ge.x[q1], ge.x[q2], t1, t2);
+          Vec2 x = G.map(ge.x[q1], ge.x[q2]);
+          exact_->eval(x.x(), x.y(), ex, scratch.data());
+          double d = Uq(q1, q2) - ex[ExactSolution::U];
+          s += ge.w[q1] * ge.w[q2] * det * d * d;
+        }
+      err[c] = s;
+    }
+  }
+  return err;
+}
+
+double DGDiscretization::l2_error(const Eigen::VectorXd& U) const {
+  std::vector<double> e = cell_l2_errors_squared(U);
+  double s = 0;
+  for (double v : e) s += v;
+  return std::sqrt(s);
+}
+
+double DGDiscretization::evaluate(const Eigen::VectorXd& U, int c, double xi, double eta) const {
+  LagrangeBasis1D b(p_);
+  return eval_tensor(b, U.data() + static_cast<long long>(c) * nb_, xi, eta);
+}
+
+namespace {
+// Trace values of the degree-p basis of side 0 of boundary face f at Gauss point t in [0,1].
+void boundary_trace(const Face& f, const std::vector<double>& gll, double t, double* phi) {
+  const int n1 = static_cast<int>(gll.size());
+  double s = f.s_a[0] + t * (f.s_b[0] - f.s_a[0]);
+  double xi, eta;
+  edge_point(f.local_edge[0], s, xi, eta);
+  std::vector<double> lx(n1), dlx(n1), ly(n1), dly(n1);
+  lagrange_1d(gll, xi, lx.data(), dlx.data());
+  lagrange_1d(gll, eta, ly.data(), dly.data());
+  for (int j = 0; j < n1; ++j)
+    for (int i = 0; i < n1; ++i) phi[i + n1 * j] = lx[i] * ly[j];
+}
+}  // namespace
+
+double DGDiscretization::functional(const Eigen::VectorXd& U) const {
+  if (functional_group_ < 0) return 0;
+  Rule1D g = gauss_legendre(p_ + 2);
+  std::vector<double> phi(nb_);
+  double J = 0;
+  for (const Face& f : topo_.faces) {
+    if (!f.is_boundary() || f.group != functional_group_) continue;
+    const double* Uc = U.data() + static_cast<long long>(f.cell[0]) * nb_;
+    for (size_t q = 0; q < g.x.size(); ++q) {
+      boundary_trace(f, impl_->gll, 0.5 * (g.x[q] + 1), phi.data());
+      double u = 0;
+      for (int a = 0; a < nb_; ++a) u += Uc[a] * phi[a];
+      J += 0.5 * g.w[q] * f.length * u * u;
+    }
+  }
+  return J;
+}
+
+Eigen::VectorXd DGDiscretization::functional_gradient(const Eigen::VectorXd& U) const {
+  VectorXd dJ = VectorXd::Zero(num_dofs());
+  if (functional_group_ < 0) return dJ;
+  Rule1D g = gauss_legendre(p_ + 2);
+  std::vector<double> phi(nb_);
+  for (const Face& f : topo_.faces) {
+    if (!f.is_boundary() || f.group != functional_group_) continue;
+    const long long off = static_cast<long long>(f.cell[0]) * nb_;
+    for (size_t q = 0; q < g.x.size(); ++q) {
+      boundary_trace(f, impl_->gll, 0.5 * (g.x[q] + 1), phi.data());
+      double u = 0;
+      for (int a = 0; a < nb_; ++a) u += U[off + a] * phi[a];
+      double w = 0.5 * g.w[q] * f.length;
+      for (int a = 0; a < nb_; ++a) dJ[off + a] += 2 * w * u * phi[a];
+    }
+  }
+  return dJ;
+}
+
+double DGDiscretization::functional_exact() const {
+  if (functional_group_ < 0) return 0;
+  // Composite 20-point Gauss on 8 sub-intervals of every face.
+  Rule1D g = gauss_legendre(20);
+  const int sub = 8;
+  double J = 0;
+  for (const Face& f : topo_.faces) {
+    if (!f.is_boundary() || f.group != functional_group_) continue;
+    for (int k = 0; k < sub; ++k)
+      for (size_t q = 0; q < g.x.size(); ++q) {
+        double t = (k + 0.5 * (g.x[q] + 1)) / sub;
+        Vec2 x = f.a + t * (f.b - f.a);
+        double u = exact_->u(x.x(), x.y());
+        J += 0.5 * g.w[q] * f.length / sub * u * u;
+      }
+  }
+  return J;
+}
+
+Eigen::VectorXd DGDiscretization::interpolate_exact() const {
+  const Impl& I = *impl_;
+  VectorXd U(num_dofs());
+  const int nc = mesh_.num_cells(), n1 = I.n1;
+#pragma omp parallel
+  {
+    std::vector<double> scratch(exact_->scratch_size());
+    double ex[ExactSolution::NUM_OUTPUTS];
+#pragma omp for schedule(static)
+    for (int c = 0; c < nc; ++c)
+      for (int j = 0; j < n1; ++j)
+        for (int i = 0; i < n1; ++i) {
+          Vec2 x = I.geo[c].map(I.gll[i], I.gll[j]);
+          exact_->eval(x.x(), x.y(), ex, scratch.data());
+          U[static_cast<long long>(c) * nb_ + i + n1 * j] = ex[ExactSolution::U];
+        }
+  }
+  return U;
+}
+
+Eigen::VectorXd DGDiscretization::inject(const Eigen::VectorXd& U_from, int p_from) const {
+  const int m1 = p_from + 1, n1 = p_ + 1, nc = mesh_.num_cells();
+  if (U_from.size() != static_cast<Eigen::Index>(m1) * m1 * nc)
+    throw InputError("inject: vector of size " + std::to_string(U_from.size()) + " does not match degree " +
+                     std::to_string(p_from) + " on " + std::to_string(nc) + " cells");
+  LagrangeBasis1D from(p_from);
+  MatrixXd T(n1, m1);
+  std::vector<double> l(m1), dl(m1);
+  for (int k = 0; k < n1; ++k) {
+    lagrange_1d(from.nodes(), impl_->gll[k], l.data(), dl.data());
+    for (int i = 0; i < m1; ++i) T(k, i) = l[i];
+  }
+  VectorXd U(num_dofs());
+  for (int c = 0; c < nc; ++c) {
+    Eigen::Map<const MatrixXd> Uc(U_from.data() + static_cast<long long>(c) * m1 * m1, m1, m1);
+    Eigen::Map<MatrixXd> Vc(U.data() + static_cast<long long>(c) * nb_, n1, n1);
+    Vc.noalias() = T * Uc * T.transpose();
+  }
+  return U;
+}
+
+}  // namespace quadapt
