@@ -2,9 +2,9 @@
 # the unit square as N x N quads (or 2 N^2 triangles with "tri"), boundary groups
 # bottom/right/top/left, and two cell fields: B (1 component, 1/(0.05 + |x - y|) at the cell
 # centroid, so cells on the diagonal are the largest) and Vinv (9 components).
-# usage: make_square.py N OUT.msh [tri]
+# usage: make_square.py N OUT.msh [tri] [bare]    (bare: no fields)
 import sys
-n = int(sys.argv[1]); out = sys.argv[2]; tri = len(sys.argv) > 3 and sys.argv[3] == 'tri'
+n = int(sys.argv[1]); out = sys.argv[2]; tri = "tri" in sys.argv[3:]; bare = "bare" in sys.argv[3:]
 nid = lambda i, j: j * (n + 1) + i + 1
 nodes = [(nid(i, j), i / n, j / n) for j in range(n + 1) for i in range(n + 1)]
 cells = []
@@ -49,6 +49,7 @@ B = []
 for c in cells:
     x, y = centroid(c)
     B.append((1.0 / (0.05 + abs(x - y)),))
-L += view("B", B)
-L += view("Vinv", [(1, 0, 0, 0, 1, 0, 0, 0, 0)] * len(cells))
+if not bare:
+    L += view("B", B)
+    L += view("Vinv", [(1, 0, 0, 0, 1, 0, 0, 0, 0)] * len(cells))
 open(out, "w").write("\n".join(L) + "\n")
