@@ -1,0 +1,130 @@
+#include "estimate/estimate_frame.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "estimate/directional.hpp"
+#include "estimate/error_model.hpp"
+#include "estimate/reconstruct.hpp"
+#include "mesh/topology.hpp"
+
+namespace quadapt {
+
+std::vector<std::vector<int>> reconstruction_patches(const Mesh& m, PatchKind kind) {
+  const int nc = m.num_cells();
+  Topology topo = build_topology(m);
+  std::vector<std::vector<int>> node_cells;
+  if (kind == PatchKind::Vertex) {
+    node_cells.resize(m.num_nodes());
+    for (int c = 0; c < nc; ++c)
+      for (int k = 0; k < m.cells[c].nv; ++k) node_cells[m.cells[c].v[k]].push_back(c);
+  }
+  std::vector<std::vector<int>> patches(nc);
+  for (int c = 0; c < nc; ++c) {
+    std::vector<int> p = topo.neighbours(c);
+    if (kind == PatchKind::Vertex)
+      for (int k = 0; k < m.cells[c].nv; ++k)
+        for (int o : node_cells[m.cells[c].v[k]]) p.push_back(o);
+    std::sort(p.begin(), p.end());
+    p.erase(std::unique(p.begin(), p.end()), p.end());
+    p.erase(std::remove(p.begin(), p.end(), c), p.end());
+    p.insert(p.begin(), c);
+    patches[c] = std::move(p);
+  }
+  return patches;
+}
+
+EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const std::string& source) {
+  const CellNodeField* f = sol.cell_node_field(opt.field);
+  if (!f)
+    throw InputError(source, "no DG solution field \"" + opt.field +
+                                 "\" ($ElementNodeData with a GLL interpolation scheme); "
+                                 "expected the output of dgsolve");
+  if (f->degree < 0 || f->ncomp != 1)
+    throw InputError(source, "field \"" + opt.field + "\" is not a scalar DG field of degree p "
+                             "(no GLL interpolation scheme)");
+  const int p = f->degree;
+  if (f->per_cell != (p + 1) * (p + 1))
+    throw InputError(source, "field \"" + opt.field + "\" has " + std::to_string(f->per_cell) +
+                                 " values per cell, expected (p+1)^2 = " + std::to_string((p + 1) * (p + 1)));
+  if (!sol.all_quads()) throw InputError(source, "the DG solution mesh must be all-quad");
+  if (f->num_cells() != sol.num_cells())
+    throw InputError(source, "field \"" + opt.field + "\" does not match the cell count");
+  if (!(opt.q >= 1)) throw InputError("q must be >= 1");
+  if (!(opt.max_anisotropy >= 1)) throw InputError("max anisotropy must be >= 1");
+  for (double v : f->values)
+    if (!std::isfinite(v)) throw InputError(source, "field \"" + opt.field + "\" has non-finite values");
+
+  const int n = p + 1;
+  const int nc = sol.num_cells();
+  const std::vector<std::vector<int>> patches = reconstruction_patches(sol, opt.patch);
+  PatchReconstructor rec(sol, f->values, p, n);
+
+  EstimateResult r;
+  r.p = p;
+  r.A1.assign(nc, 0); r.A2.assign(nc, 0); r.phi.assign(nc, 0);
+  r.theta.assign(nc, 0); r.rho.assign(nc, 1); r.B.assign(nc, 0);
+
+  bool failed = false;
+  std::string what;
+#pragma omp parallel for schedule(static)
+  for (int c = 0; c < nc; ++c) {
+    try {
+      PatchPolynomial poly = rec.reconstruct(c, patches[c]);
+      DirectionalExtrema d = directional_extrema(poly.top_homogeneous());
+      r.A1[c] = d.A1;
+      r.A2[c] = d.A2;
+      r.phi[c] = d.phi;
+    } catch (const std::exception& e) {
+#pragma omp critical
+      {
+        failed = true;
+        what = e.what();
+      }
+    }
+  }
+  if (failed) throw NumericalError(source.empty() ? what : source + ": " + what);
+
+  // Noise floor: a cell whose degree-(p+1) term changes u by at most direction_floor · max|u|
+  // over the cell (A1 h_k^n), or whose A1 is below direction_floor · max A1, has no meaningful
+  // derivative: A1 = A2 = 0, B = 0, isotropic θ = 0, ρ = 1.
+  double amax = 0, umax = 0;
+  for (double a : r.A1) amax = std::max(amax, a);
+  for (double v : f->values) umax = std::max(umax, std::abs(v));
+  for (int c = 0; c < nc; ++c) {
+    const double hk = std::sqrt(std::abs(cell_area(sol, c)));
+    if (r.A1[c] * std::pow(hk, n) <= opt.direction_floor * umax || r.A1[c] <= opt.direction_floor * amax) {
+      r.A1[c] = r.A2[c] = 0;
+      continue;
+    }
+    FrameShape s = optimal_shape(r.A1[c], r.A2[c], r.phi[c], n, opt.q, opt.max_anisotropy);
+    r.B[c] = s.B;
+    r.theta[c] = s.theta;
+    r.rho[c] = s.rho;
+  }
+  return r;
+}
+
+Mesh make_shape_mesh(const Mesh& sol, const EstimateResult& r) {
+  Mesh m = sol;
+  m.clear_fields();
+  auto scalar = [&](const std::string& name, const std::vector<double>& v) {
+    CellField f;
+    f.name = name;
+    f.ncomp = 1;
+    f.values = v;
+    m.set_field(std::move(f));
+  };
+  scalar("theta", r.theta);
+  scalar("rho", r.rho);
+  scalar("B", r.B);
+  scalar("A1", r.A1);
+  scalar("A2", r.A2);
+  scalar("phi", r.phi);
+  scalar("p", std::vector<double>(r.A1.size(), static_cast<double>(r.p)));
+  return m;
+}
+
+}  // namespace quadapt

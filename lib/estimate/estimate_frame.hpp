@@ -1,0 +1,54 @@
+#pragma once
+// estimate-frame: per-cell optimal frame shape and error constant from a DG solution
+// (thesis Algorithm 4, "local error minimization": eqs. 5.8, 5.10-5.16).
+//
+// For each cell k: the degree-(p+1) H1 patch reconstruction over k and its face neighbours
+// (estimate/reconstruct.hpp), the extremal (p+1)-th directional derivatives A1, A2 and the
+// direction φ of A1 (estimate/directional.hpp), then θ, ρ, B (estimate/error_model.hpp).
+// Cells are independent: OpenMP-parallel, deterministic for any thread count.
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+
+namespace quadapt {
+
+/// Reconstruction patch D(k): Face = k and its face neighbours (thesis Fig. 5.1, the default);
+/// Vertex = k and every cell sharing a vertex with it, plus face neighbours (hanging nodes)
+/// — a tensor-like 3x3 patch on structured meshes, less biased at boundaries.
+enum class PatchKind { Face, Vertex };
+
+struct EstimateOptions {
+  std::string field = "u";    ///< name of the DG CellNodeField
+  PatchKind patch = PatchKind::Face;
+  double q = 2;               ///< L_q norm of the error model (q >= 1)
+  /// Numerical cap on ρ = h1/h2 (and floor A2 >= A1 ρ_max^-(p+1)) so that A2 = 0 stays finite.
+  /// The user-facing anisotropy limit is size-solve's --max-anisotropy.
+  double max_anisotropy = 1e6;
+  /// Noise floor: cells with A1 h_k^(p+1) <= direction_floor · max|u| (h_k = sqrt(cell area))
+  /// or A1 <= direction_floor · max_k A1 are derivative-free: A1 = A2 = B = 0, θ = 0, ρ = 1.
+  double direction_floor = 1e-10;
+};
+
+struct EstimateResult {
+  int p = 0;                  ///< DG degree of the input field
+  std::vector<double> A1, A2; ///< eq. 5.10, 5.13 (Taylor-term convention, see directional.hpp)
+  std::vector<double> phi;    ///< direction of A1, [0, π)
+  std::vector<double> theta;  ///< long-axis direction, [0, π)
+  std::vector<double> rho;    ///< h1/h2 >= 1
+  std::vector<double> B;      ///< error constant (eq. 5.16, our constant)
+};
+
+/// The patch cells of every cell (cell k first, then the others in increasing index).
+std::vector<std::vector<int>> reconstruction_patches(const Mesh& m, PatchKind kind);
+
+/// Runs the estimate on `sol`. `source` names the file in error messages. Throws InputError
+/// when the field is missing or is not a degree-p DG field on an all-quad mesh.
+EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt = {},
+                              const std::string& source = "");
+
+/// The SHAPE mesh: sol's geometry and boundary groups, no input fields, plus CellFields
+/// theta, rho, B, A1, A2, phi and p (the DG degree, constant per cell).
+Mesh make_shape_mesh(const Mesh& sol, const EstimateResult& r);
+
+}  // namespace quadapt

@@ -1,0 +1,71 @@
+#pragma once
+// Patchwise H1 reconstruction of a degree-(p+1) polynomial from a DG field (thesis eq. 5.8).
+//
+// For cell k with patch D(k) = {k} ∪ face neighbours (conforming or hanging-node, from
+// mesh/topology.hpp), the enriched polynomial ũ ∈ P^n(D(k)) (total degree n, normally n = p+1)
+// solves
+//     <ũ, φ>_{H1(D(k))} = <u_h, φ>_{H1(D(k))}   for all φ ∈ P^n(D(k)),
+// with the broken, physical-coordinate H1 inner product <u,v> = Σ_cells ∫ (u v + ∇u·∇v) dx
+// (exactly the thesis's / PHiLiP's choice). Integrals use an (n+1)-point Gauss–Legendre tensor
+// rule per patch cell (exact for the mass term on parallelograms). Because ũ is a projection,
+// any u_h that is itself in P^n on the patch is reproduced exactly (to rounding), whatever the
+// quadrature — the unit tests rely on this.
+//
+// The polynomial is represented by monomials in scaled local coordinates
+//     s = (x - x_c) / H,  t = (y - y_c) / H,
+// x_c = centroid of cell k, H = largest distance from x_c to a patch vertex (so |s|,|t| <= 1
+// and the normal matrix is well conditioned).
+#include <Eigen/Core>
+#include <utility>
+#include <vector>
+
+#include "dg/basis.hpp"
+#include "mesh/mesh.hpp"
+
+namespace quadapt {
+
+/// Total-degree-n monomial exponents (i, j) for s^i t^j, ordered by total degree, then by
+/// decreasing i: (0,0), (1,0),(0,1), (2,0),(1,1),(0,2), ... Size (n+1)(n+2)/2.
+std::vector<std::pair<int, int>> monomial_exponents(int n);
+
+/// A polynomial of total degree n in scaled local coordinates about `center`.
+struct PatchPolynomial {
+  int degree = 0;
+  Vec2 center{0, 0};
+  double scale = 1;             ///< H (physical length)
+  Eigen::VectorXd coeffs;       ///< one per monomial_exponents(degree) entry
+
+  /// ũ(x) at a physical point.
+  double eval(const Vec2& x) const;
+  /// Coefficients a_i (i = 0..n) of the top-degree homogeneous part in PHYSICAL units:
+  /// ũ(x_c + y) = ... + Σ_i a_i y_x^i y_y^(n-i). Equals D^n ũ[ξ,...,ξ]/n! when evaluated at a
+  /// unit vector ξ (the Taylor term of eqs. 5.6-5.7). Translation invariant.
+  std::vector<double> top_homogeneous() const;
+};
+
+/// Reconstructs degree-n patch polynomials from a DG field of degree p on straight bilinear
+/// quads (the "u" CellNodeField: (p+1)^2 GLL-node values per cell, index i + (p+1) j).
+class PatchReconstructor {
+ public:
+  /// `values`: the DG coefficients, mesh.num_cells() * (p+1)^2 (cell-major). Requires an
+  /// all-quad mesh (throws InputError otherwise). n >= 1.
+  PatchReconstructor(const Mesh& mesh, const std::vector<double>& values, int p, int n);
+
+  /// ũ on the patch `patch` (cell indices; must contain `cell`), centred on `cell`.
+  /// Throws NumericalError if the normal matrix is singular (cannot happen for cells of
+  /// positive area).
+  PatchPolynomial reconstruct(int cell, const std::vector<int>& patch) const;
+
+  int field_degree() const { return p_; }
+  int degree() const { return n_; }
+
+ private:
+  const Mesh& mesh_;
+  const std::vector<double>& values_;
+  int p_, n_;
+  LagrangeBasis1D basis_;
+  Rule1D rule_;
+  std::vector<std::pair<int, int>> exps_;
+};
+
+}  // namespace quadapt

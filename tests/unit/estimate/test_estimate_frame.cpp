@@ -1,0 +1,201 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "estimate/directional.hpp"
+#include "estimate/estimate_frame.hpp"
+#include "estimate/interpolate.hpp"
+#include "test_util.hpp"
+
+using namespace quadapt;
+
+namespace {
+double angle_diff_mod_pi(double a, double b) {
+  double d = std::fmod(std::abs(a - b), M_PI);
+  return std::min(d, M_PI - d);
+}
+Mesh with_u(Mesh m, int p, const std::function<double(double, double)>& f) {
+  m.set_field(interpolate_dg(m, p, f));
+  return m;
+}
+}  // namespace
+
+TEST_CASE("estimate on a degree-p field holding x^p y + c x y^p: A1, A2, phi match brute force") {
+  for (int p = 2; p <= 3; ++p) {
+    CAPTURE(p);
+    const double c = 0.4;
+    // axis-aligned rectangles of varying size: Q_p holds x^p y exactly (bilinear or sheared
+    // cells would not)
+    Mesh aff = make_structured_quads(6, 6);
+    for (auto& x : aff.nodes) x = Vec2(x.x() + 0.3 * x.x() * x.x(), 0.8 * x.y() - 0.2 * x.y() * x.y());
+    Mesh m = with_u(aff, p,
+                    [&](double x, double y) {
+                      return std::pow(x, p) * y + c * x * std::pow(y, p) + (p == 3 ? 0.3 * x * x * y * y : 0.0) + x - 2 * y;
+                    });
+    EstimateResult r = estimate_frame(m);
+    CHECK(r.p == p);
+    // brute force on the exact top-degree part: P(φ) = cos^p sin + c cos sin^p (+ 0.3 cos^2 sin^2)
+    auto P = [&](double ph) {
+      const double cs = std::cos(ph), sn = std::sin(ph);
+      return std::pow(cs, p) * sn + c * cs * std::pow(sn, p) + (p == 3 ? 0.3 * cs * cs * sn * sn : 0.0);
+    };
+    double best = 0, bphi = 0;
+    for (int k = 0; k < 2000000; ++k) {
+      double ph = M_PI * k / 2000000.0;
+      double v = std::abs(P(ph));
+      if (v > best) { best = v; bphi = ph; }
+    }
+    const double a2 = std::abs(P(bphi + M_PI / 2));
+    for (int k = 0; k < m.num_cells(); ++k) {
+      CHECK(r.A1[k] == doctest::Approx(best).epsilon(1e-9));
+      CHECK(r.A2[k] == doctest::Approx(a2).epsilon(1e-5));
+      CHECK(angle_diff_mod_pi(r.phi[k], bphi) < 1e-5);
+      CHECK(angle_diff_mod_pi(r.theta[k], bphi - M_PI / 2) < 1e-5);
+      CHECK(r.rho[k] == doctest::Approx(std::pow(best / a2, 1.0 / (p + 1))).epsilon(1e-4));
+    }
+  }
+}
+
+TEST_CASE("u = tanh(50 x): frames thin in x (refinement along the largest derivative)") {
+  // [-0.5,0.5]^2, 32x32 (h = 1.6 front widths), structured and perturbed (30% of h), p = 1..3,
+  // both patch kinds. Every cell with a strong feature (A1 >= 20% of the largest) gets a frame
+  // whose LONG axis is along y (theta = phi + pi/2) and whose x-extent is the smaller one; the
+  // median direction error is below 5 degrees. On the structured mesh the vertex (3x3) patch
+  // is a tensor domain, so the reconstruction of a function of x alone is exactly y-free.
+  for (int p = 1; p <= 3; ++p)
+    for (int perturbed = 0; perturbed <= 1; ++perturbed)
+      for (PatchKind kind : {PatchKind::Face, PatchKind::Vertex}) {
+        CAPTURE(p);
+        CAPTURE(perturbed);
+        CAPTURE(static_cast<int>(kind));
+        Mesh base = perturbed ? make_perturbed_quads(32, 32, 0.3, 17) : make_structured_quads(32, 32);
+        Mesh m = with_u(testutil::rescale(base, -0.5, 0.5, -0.5, 0.5), p, [](double x, double) { return std::tanh(50 * x); });
+        EstimateOptions o;
+        o.patch = kind;
+        EstimateResult r = estimate_frame(m, o);
+        double amax = 0;
+        for (double a : r.A1) amax = std::max(amax, a);
+        std::vector<double> errs;
+        double minrho = 1e300;
+        for (int c = 0; c < m.num_cells(); ++c) {
+          if (r.A1[c] < 0.2 * amax) continue;
+          errs.push_back(angle_diff_mod_pi(r.phi[c], 0));
+          minrho = std::min(minrho, r.rho[c]);
+          CHECK(angle_diff_mod_pi(r.theta[c], r.phi[c] + M_PI / 2) < 1e-12);
+          const double h1 = std::sqrt(r.rho[c]), h2 = 1 / std::sqrt(r.rho[c]);
+          const double ex = std::abs(h1 * std::cos(r.theta[c])) + std::abs(h2 * std::sin(r.theta[c]));
+          const double ey = std::abs(h1 * std::sin(r.theta[c])) + std::abs(h2 * std::cos(r.theta[c]));
+          CHECK(ex < ey);
+        }
+        REQUIRE(errs.size() >= 64);
+        std::sort(errs.begin(), errs.end());
+        const double median = errs[errs.size() / 2], worst = errs.back();
+        CHECK(median < 5 * M_PI / 180);
+        CHECK(minrho > 1.05);
+        if (!perturbed && kind == PatchKind::Vertex) CHECK(worst < 1e-9);
+        MESSAGE("tanh(50x) p=" << p << " perturbed=" << perturbed << " patch=" << std::string(kind == PatchKind::Face ? "face" : "vertex")
+                               << ": median " << median * 180 / M_PI << " deg, worst " << worst * 180 / M_PI
+                               << " deg, min rho " << minrho << " over " << errs.size() << " cells");
+      }
+}
+
+TEST_CASE("rotated front tanh(40(x cos a + y sin a - 0.6)): frames aligned within a few degrees") {
+  // Perturbed 48x48 mesh (h ~ front width / 1.2), p = 2. The cells with a strong feature
+  // (A1 >= 50% of the largest) are aligned within 7 degrees with the thesis's face patch and
+  // within 4 degrees with the 3x3 vertex patch (measured: 6.3 and 3.5); the median front cell
+  // (A1 >= 10%) within 2 degrees (measured ~0.6-1.1). (Where the 3rd derivative changes sign along the normal, A1 is small and
+  // its direction is set by the other terms: those cells are not expected to align.)
+  const int p = 2;
+  for (PatchKind kind : {PatchKind::Face, PatchKind::Vertex})
+  for (double a : {0.2, 0.5, 0.785398, 1.1, 1.4}) {
+    CAPTURE(a);
+    CAPTURE(static_cast<int>(kind));
+    Mesh m = with_u(make_perturbed_quads(48, 48, 0.2, 4), p, [a](double x, double y) {
+      return std::tanh(40 * (x * std::cos(a) + y * std::sin(a) - 0.6));
+    });
+    EstimateOptions o;
+    o.patch = kind;
+    EstimateResult r = estimate_frame(m, o);
+    double amax = 0;
+    for (double v : r.A1) amax = std::max(amax, v);
+    double worst = 0;
+    std::vector<double> errs;
+    for (int c = 0; c < m.num_cells(); ++c) {
+      const double e = angle_diff_mod_pi(r.phi[c], a);
+      if (r.A1[c] >= 0.5 * amax) worst = std::max(worst, e);
+      if (r.A1[c] >= 0.1 * amax) errs.push_back(e);
+      if (r.A1[c] > 0) CHECK(angle_diff_mod_pi(r.theta[c], r.phi[c] + M_PI / 2) < 1e-12);
+    }
+    std::sort(errs.begin(), errs.end());
+    REQUIRE(errs.size() > 50);
+    const double median = errs[errs.size() / 2];
+    CHECK(worst < (kind == PatchKind::Face ? 7 : 4) * M_PI / 180);
+    CHECK(median < 2 * M_PI / 180);
+    MESSAGE("patch " << std::string(kind == PatchKind::Face ? "face" : "vertex") << " a = " << a << ": strong cells worst " << worst * 180 / M_PI << " deg, median " << median * 180 / M_PI
+                   << " deg over " << errs.size() << " front cells");
+  }
+}
+
+TEST_CASE("vanishing derivatives: no NaN or infinity") {
+  // p = 2 field of a quadratic: the cubic part vanishes (A1 ~ rounding) -> isotropic, finite
+  Mesh m = with_u(make_perturbed_quads(6, 6, 0.2, 1), 2, [](double x, double y) { return 1 + x * x - x * y; });
+  EstimateResult r = estimate_frame(m);
+  for (int c = 0; c < m.num_cells(); ++c) {
+    CHECK(std::isfinite(r.theta[c]));
+    CHECK(std::isfinite(r.rho[c]));
+    CHECK(std::isfinite(r.B[c]));
+    CHECK(r.A1[c] < 1e-8);
+    CHECK(r.B[c] < 1e-12);
+  }
+  // constant field: exactly isotropic, B = 0
+  Mesh k = with_u(make_structured_quads(4, 4), 1, [](double, double) { return 3.0; });
+  EstimateResult rk = estimate_frame(k);
+  for (int c = 0; c < k.num_cells(); ++c) {
+    CHECK(rk.rho[c] == 1);
+    CHECK(rk.theta[c] == 0);
+    CHECK(rk.B[c] == doctest::Approx(0).epsilon(1e-20));
+  }
+  // x^3 with p = 2: A2 = 0 exactly along y; rho capped, B finite and positive
+  Mesh c3 = with_u(make_structured_quads(4, 4), 2, [](double x, double) { return x * x * x; });
+  EstimateOptions o;
+  o.max_anisotropy = 100;
+  EstimateResult r3 = estimate_frame(c3, o);
+  for (int c = 0; c < c3.num_cells(); ++c) {
+    CHECK(r3.rho[c] <= 100 + 1e-9);
+    CHECK(std::isfinite(r3.B[c]));
+    CHECK(r3.B[c] > 0);
+  }
+}
+
+TEST_CASE("estimate input errors") {
+  Mesh m = make_structured_quads(3, 3);
+  CHECK_THROWS_AS(estimate_frame(m, {}, "sol.msh"), InputError);
+  try {
+    estimate_frame(m, {}, "sol.msh");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("sol.msh") == 0);
+  }
+  // vertex-valued (non-DG) field of the right name
+  CellNodeField v;
+  v.name = "u";
+  v.per_cell = 4;
+  v.degree = -1;
+  v.values.assign(36, 0.0);
+  m.set_field(v);
+  CHECK_THROWS_AS(estimate_frame(m), InputError);
+}
+
+TEST_CASE("shape mesh carries theta, rho, B, A1, A2, phi, p and no solution") {
+  Mesh m = with_u(make_structured_quads(4, 4), 2, [](double x, double y) { return std::sin(3 * x) * y; });
+  EstimateResult r = estimate_frame(m);
+  Mesh s = make_shape_mesh(m, r);
+  for (const char* n : {"theta", "rho", "B", "A1", "A2", "phi", "p"}) {
+    CAPTURE(n);
+    REQUIRE(s.cell_field(n) != nullptr);
+    CHECK(s.cell_field(n)->values.size() == 16);
+  }
+  CHECK(s.cell_node_field("u") == nullptr);
+  CHECK((*s.cell_field("p"))(3) == 2);
+}
