@@ -99,11 +99,19 @@ if [ ${#missing[@]} -gt 0 ]; then
   die "tool(s) not found: ${missing[*]} (needed by METHOD=$METHOD MODE=$MODE). Build them
   (cmake --build build --target ${missing[*]}) or point BIN= at the directory that holds them"
 fi
-plots=yes
-if [ "$PICTURES" = yes ]; then
-  command -v meshplot >/dev/null 2>&1 || { echo "loop: note: meshplot not found; no pictures" >&2; plots=no; }
+if [ "$PICTURES" = yes ] && ! command -v meshplot >/dev/null 2>&1; then
+  echo "loop: note: meshplot not found; the run will have no mesh pictures" >&2
 fi
 [ "$CHECK_ONLY" = 1 ] && { echo "loop: inputs OK (tools: ${tools[*]})"; exit 0; }
+
+# Under `make -jN` without OMP_NUM_THREADS, share the cores: nproc / N threads per tool (>= 1).
+if [ -z "${OMP_NUM_THREADS:-}" ] && [[ " ${MAKEFLAGS:-} " =~ \ -j([0-9]*) ]]; then
+  jobs="${BASH_REMATCH[1]:-0}"
+  threads=1
+  [ "$jobs" -gt 0 ] && threads=$(( $(nproc) / jobs ))
+  [ "$threads" -ge 1 ] || threads=1
+  export OMP_NUM_THREADS=$threads
+fi
 
 # ------------------------------------------------------------------ run directory
 mkdir -p "$OUT" || die "cannot create OUT '$OUT'"
@@ -230,26 +238,7 @@ rows="$(ctl table "$OUT" --last $last)"
 echo "$last" > "$OUT/loop.done.tmp-$$" && mv -f "$OUT/loop.done.tmp-$$" "$OUT/loop.done"
 
 # ------------------------------------------------------------------ pictures (optional)
-if [ "$PICTURES" = yes ] && [ "$plots" = yes ]; then
-  fin="$OUT/step-$last"
-  pic() {  # pic OUTPUT ARGS... (skipped when up to date)
-    local o="$1"; shift
-    if [ ! -s "$o" ] || [ "$fin/sol.msh" -nt "$o" ]; then
-      meshplot "$@" -q -o "$o" --report "$OUT/.meshplot.json" 2>"$OUT/meshplot.log" \
-        || echo "loop: warning: meshplot failed for $o (see $OUT/meshplot.log)" >&2
-    fi
-  }
-  pic "$OUT/final-mesh.png" "$fin/mesh.msh" --title "$name: final mesh, step $last"
-  pic "$OUT/final-solution.png" "$fin/sol.msh" --field u --title "$name: u, step $last"
-  if [ -n "$WINDOW" ]; then
-    pic "$OUT/final-mesh-closeup.png" "$fin/mesh.msh" --window "$WINDOW" --title "$name: close-up, step $last"
-  fi
-  if "$PY" -c "import matplotlib" 2>/dev/null; then
-    "$PY" "$root/scripts/plot/convergence.py" --p "$P" --measure auto --mode "$MODE" \
-      -o "$OUT/convergence.png" "$METHOD=$OUT/convergence.csv" 2>"$OUT/plot.log" \
-      || echo "loop: warning: convergence plot failed (see $OUT/plot.log)" >&2
-  else
-    echo "loop: note: python3 matplotlib not found; no convergence plot" >&2
-  fi
+if [ "$PICTURES" = yes ]; then
+  "$here/pictures.sh" "$OUT" --title "$name" ${WINDOW:+--window "$WINDOW"}
 fi
 say "done: $rows solves; table $OUT/convergence.csv"
