@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# The study report (scripts/loop/compare.py) and plots on synthetic runs with known power laws:
+# interpolation at the thesis's DOF counts must be exact for e = c N^-r, extrapolation is marked,
+# runs that are missing are reported as such. Needs no quadapt tool.
+set -euo pipefail
+SRC="${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}"
+PY=/usr/bin/python3; [ -x "$PY" ] || PY=python3
+T="$(mktemp -d)"; trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# thesis table with two rows: one inside our range, one beyond it, one for a run we lack
+cat > "$T/tables.json" <<'JSON'
+{"cases": {"demo": {"table": "9.9", "measure": "l2_error", "rows": [
+  {"p": 2, "method": "bamg", "dofs": 3.0e4, "error": 1e-5, "t_solve": 10.0},
+  {"p": 2, "method": "lpcvt", "dofs": 2.0e5, "error": 1e-9, "t_solve": 10.0},
+  {"p": 2, "method": "fixed_fraction", "dofs": 3.0e4, "error": 1e-9, "t_solve": 10.0}]}}}
+JSON
+"$PY" - "$T/study" <<'PYEOF'
+import os, sys
+base = sys.argv[1]
+for m, c in (("bamg", 1.0), ("lpcvt", 2.0)):
+    d = os.path.join(base, "p2-" + m); os.makedirs(d)
+    rows = ["step,cells,dofs,l2_error,functional_error,t_solve"]
+    n = 2304.0
+    for k in range(8):  # e = c N^-1.5, t = 1e-4 N
+        rows.append("%d,%d,%.17g,%.17g,,%.17g" % (k, n / 9, n, c * n ** -1.5, 1e-4 * n)); n *= 1.5
+    open(os.path.join(d, "convergence.csv"), "w").write("\n".join(rows) + "\n")
+    open(os.path.join(d, "loop.done"), "w").write("7\n")
+PYEOF
+THESIS_TABLES="$T/tables.json" bash "$SRC/scripts/loop/study-report.sh" "$T/study" feature demo "2" \
+  "uniform fixed-fraction bamg lpcvt" "Demo" > "$T/out.txt" 2>&1 || { cat "$T/out.txt"; fail "study-report"; }
+[ -s "$T/study/report.md" ] && [ -s "$T/study/report.json" ] || fail "no report"
+"$PY" - "$T/study/report.json" <<'PYEOF' || fail "report values"
+import json, sys
+r = {x["method"]: x for x in json.load(open(sys.argv[1]))["rows"]}
+b = r["bamg"]  # inside the range: exact for a power law
+assert abs(b["ours"] / (3.0e4 ** -1.5) - 1) < 1e-9, b
+assert b["flag"] == "" and b["better"] == "quadapt", b
+assert abs(b["our_t_solve"] / 3.0 - 1) < 1e-9 and b["faster"] == "quadapt", b
+l = r["lpcvt"]  # 2e5 > 1.5 x our last point 3.9e4: not reached
+assert l["ours"] is None and l["flag"] == "not reached", l
+f = r["fixed-fraction"]
+assert f["ours"] is None and f["flag"] == "no data", f
+PYEOF
+grep -q "| 2 | fixed-fraction (not run) |" "$T/study/report.md" || fail "missing run not marked"
+grep -q "quadapt has the smaller error in \*\*1 of 1\*\*" "$T/study/report.md" || fail "summary line"
+if "$PY" -c "import matplotlib" 2>/dev/null; then
+  [ "$(head -c 4 "$T/study/convergence-p2.png" | od -An -tx1 | tr -d ' \n')" = "89504e47" ] || fail "no plot"
+fi
+# extrapolation within 1.5x is marked
+"$PY" - "$SRC/scripts/loop" <<'PYEOF' || fail "extrapolation"
+import sys; sys.path.insert(0, sys.argv[1])
+from compare import interp_loglog
+pts = [(1e3, 1e-2), (1e4, 1e-4)]
+y, flag = interp_loglog(pts, 1.2e4)
+assert flag == "extrap." and abs(y / (1e-4 * 1.2 ** -2) - 1) < 1e-12, (y, flag)
+assert interp_loglog(pts, 1e5) == (None, "not reached")
+y, flag = interp_loglog(pts, 3e3)
+assert flag == "" and abs(y / (1e-2 * 3 ** -2) - 1) < 1e-12
+PYEOF
+echo "loop report: all checks passed"
