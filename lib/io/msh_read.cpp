@@ -273,7 +273,7 @@ class MshReader {
   }
 
   void read_elements4() {
-    if (!have_nodes_) c_.fail("$Elements comes before $Nodes");
+    if (!have_nodes_) c_.fail("missing $Nodes section (it must come before $Elements)");
     have_elements_ = true;
     if (c_.binary) c_.begin_binary();
     const long long nblocks = bounded(c_.any_size("number of element blocks"), "number of element blocks");
@@ -300,7 +300,7 @@ class MshReader {
   }
 
   void read_elements2() {
-    if (!have_nodes_) c_.fail("$Elements comes before $Nodes");
+    if (!have_nodes_) c_.fail("missing $Nodes section (it must come before $Elements)");
     have_elements_ = true;
     const long long n = bounded(c_.integer("number of elements"), "number of elements");
     long long nodes[8];

@@ -1,0 +1,105 @@
+#include "quality/locate.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace quadapt {
+
+CellLocator::CellLocator(const Mesh& m) : m_(m) {
+  Vec2 hi(-INFINITY, -INFINITY);
+  lo_ = Vec2(INFINITY, INFINITY);
+  for (const Cell& c : m.cells)
+    for (int i = 0; i < c.nv; ++i) {
+      lo_ = lo_.cwiseMin(m.nodes[c.v[i]]);
+      hi = hi.cwiseMax(m.nodes[c.v[i]]);
+    }
+  if (m.cells.empty()) {
+    lo_ = hi = Vec2(0, 0);
+  }
+  const Vec2 ext = (hi - lo_).cwiseMax(Vec2(1e-300, 1e-300));
+  const double n = std::max(1.0, std::sqrt(static_cast<double>(m.num_cells())));
+  const double aspect = ext.x() / ext.y();
+  nx_ = std::clamp(static_cast<int>(std::ceil(n * std::sqrt(aspect))), 1, 4096);
+  ny_ = std::clamp(static_cast<int>(std::ceil(n / std::sqrt(aspect))), 1, 4096);
+  cell_size_ = Vec2(ext.x() / nx_, ext.y() / ny_);
+  buckets_.assign(static_cast<size_t>(nx_) * ny_, {});
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const Cell& cell = m.cells[c];
+    Vec2 a = m.nodes[cell.v[0]], b = a;
+    for (int i = 1; i < cell.nv; ++i) {
+      a = a.cwiseMin(m.nodes[cell.v[i]]);
+      b = b.cwiseMax(m.nodes[cell.v[i]]);
+    }
+    for (int j = by(a.y()); j <= by(b.y()); ++j)
+      for (int i = bx(a.x()); i <= bx(b.x()); ++i) buckets_[static_cast<size_t>(j) * nx_ + i].push_back(c);
+  }
+}
+
+int CellLocator::bx(double x) const { return std::clamp(static_cast<int>(std::floor((x - lo_.x()) / cell_size_.x())), 0, nx_ - 1); }
+int CellLocator::by(double y) const { return std::clamp(static_cast<int>(std::floor((y - lo_.y()) / cell_size_.y())), 0, ny_ - 1); }
+
+bool CellLocator::inside(int c, const Vec2& x) const {
+  // Crossing number on the closed polygon, with points on an edge counted as inside.
+  const Cell& cell = m_.cells[c];
+  bool in = false;
+  for (int i = 0, j = cell.nv - 1; i < cell.nv; j = i++) {
+    const Vec2& a = m_.nodes[cell.v[i]];
+    const Vec2& b = m_.nodes[cell.v[j]];
+    const Vec2 ab = b - a, ax = x - a;
+    const double cr = ab.x() * ax.y() - ab.y() * ax.x();
+    const double len2 = ab.squaredNorm();
+    if (std::abs(cr) <= 1e-14 * len2 && ax.dot(ab) >= 0 && ax.dot(ab) <= len2) return true;
+    if ((a.y() > x.y()) != (b.y() > x.y()) && x.x() < a.x() + (x.y() - a.y()) * ab.x() / ab.y()) in = !in;
+  }
+  return in;
+}
+
+double CellLocator::distance(int c, const Vec2& x) const {
+  const Cell& cell = m_.cells[c];
+  double d = INFINITY;
+  for (int i = 0; i < cell.nv; ++i) {
+    const Vec2& a = m_.nodes[cell.v[i]];
+    const Vec2& b = m_.nodes[cell.v[(i + 1) % cell.nv]];
+    const Vec2 ab = b - a;
+    const double t = ab.squaredNorm() > 0 ? std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+    d = std::min(d, (a + t * ab - x).norm());
+  }
+  return d;
+}
+
+int CellLocator::locate(const Vec2& x) const {
+  if (m_.cells.empty()) return -1;
+  const double fx = (x.x() - lo_.x()) / cell_size_.x(), fy = (x.y() - lo_.y()) / cell_size_.y();
+  if (fx < -1e-9 || fy < -1e-9 || fx > nx_ + 1e-9 || fy > ny_ + 1e-9) return -1;
+  for (int c : buckets_[static_cast<size_t>(by(x.y())) * nx_ + bx(x.x())])
+    if (inside(c, x)) return c;
+  return -1;
+}
+
+int CellLocator::locate_or_nearest(const Vec2& x) const {
+  int c = locate(x);
+  if (c >= 0 || m_.cells.empty()) return c;
+  // Rings of buckets around x until a candidate is found and no nearer one can exist.
+  const int ix = bx(x.x()), iy = by(x.y());
+  int best = -1;
+  double best_d = INFINITY;
+  const double step = std::min(cell_size_.x(), cell_size_.y());
+  for (int r = 0; r <= std::max(nx_, ny_); ++r) {
+    for (int j = iy - r; j <= iy + r; ++j)
+      for (int i = ix - r; i <= ix + r; ++i) {
+        if (i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
+        if (std::max(std::abs(i - ix), std::abs(j - iy)) != r) continue;
+        for (int cand : buckets_[static_cast<size_t>(j) * nx_ + i]) {
+          const double d = distance(cand, x);
+          if (d < best_d || (d == best_d && cand < best)) {
+            best_d = d;
+            best = cand;
+          }
+        }
+      }
+    if (best >= 0 && best_d <= (r - 1) * step) break;
+  }
+  return best;
+}
+
+}  // namespace quadapt

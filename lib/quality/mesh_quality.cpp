@@ -1,0 +1,187 @@
+#include "quality/mesh_quality.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "quality/locate.hpp"
+#include "quality/measures.hpp"
+
+namespace quadapt {
+
+ShapeStats shape_stats(const Mesh& m, const std::vector<Eigen::Matrix2d>& M) {
+  ShapeStats s;
+  double angle_sum = 0, sj_sum = 0;
+  long corners = 0, quad_corners = 0, near_right = 0;
+  std::vector<double> ratios, orientations;
+  s.angle_min_deg = INFINITY;
+  s.angle_max_deg = -INFINITY;
+  s.scaled_jacobian_min = INFINITY;
+  Vec2 p[4];
+  for (int c = 0; c < m.num_cells(); ++c) {
+    if (M.empty()) cell_points(m, c, p);
+    else cell_points(m, c, M[c], p);
+    const CellShape cs = cell_shape(p, m.cells[c].nv);
+    for (int i = 0; i < cs.nv; ++i) {
+      const double a = cs.angle_deg[i];
+      s.angle_min_deg = std::min(s.angle_min_deg, a);
+      s.angle_max_deg = std::max(s.angle_max_deg, a);
+      angle_sum += a;
+      ++corners;
+      if (cs.nv == 4) {
+        ++quad_corners;
+        if (a >= 80.0 && a <= 100.0) ++near_right;
+      }
+    }
+    s.scaled_jacobian_min = std::min(s.scaled_jacobian_min, cs.scaled_jacobian);
+    sj_sum += cs.scaled_jacobian;
+    if (cs.nv == 4) {
+      ratios.push_back(cs.edge_ratio());
+      orientations.push_back(cs.orientation_deg);
+    }
+  }
+  if (corners == 0) return ShapeStats{};
+  s.angle_mean_deg = angle_sum / corners;
+  s.quad_angle_share_80_100 = quad_corners ? static_cast<double>(near_right) / quad_corners : 0.0;
+  s.scaled_jacobian_mean = sj_sum / m.num_cells();
+  s.edge_ratio_median = median(ratios);
+  s.orientation_median_deg = axial_median_deg(orientations);
+  return s;
+}
+
+std::vector<Eigen::Matrix2d> frame_matrices(const Mesh& frame, const std::string& path) {
+  const CellField* v = frame.cell_field("Vinv");
+  if (!v) throw InputError(path, "no 'Vinv' field (a frame file carries the per-cell frame Vinv)");
+  if (v->ncomp != 9) throw InputError(path, "field 'Vinv' has " + std::to_string(v->ncomp) + " components, expected 9");
+  std::vector<Eigen::Matrix2d> M(frame.num_cells());
+  for (int c = 0; c < frame.num_cells(); ++c) {
+    M[c] << (*v)(c, 0), (*v)(c, 1), (*v)(c, 3), (*v)(c, 4);
+    const double det = M[c].determinant();
+    if (!M[c].allFinite() || !std::isfinite(det) || det == 0)
+      throw InputError(path, "cell " + std::to_string(c + 1) + ": Vinv is not finite or singular (det M = " +
+                                 std::to_string(det) + ")");
+    // A reflection (det M < 0; PHiLiP writes such frames) describes the same metric M^T M:
+    // remove it so that mapped cells keep their counter-clockwise orientation.
+    if (det < 0) M[c].row(1) *= -1.0;
+  }
+  return M;
+}
+
+QualityReport measure_quality(const Mesh& m, const Mesh* frame, const std::string& frame_path) {
+  QualityReport r;
+  r.nodes = m.num_nodes();
+  r.cells = m.num_cells();
+  r.quads = m.num_quads();
+  r.triangles = m.num_triangles();
+  r.area = total_area(m);
+  r.groups = m.groups;
+  r.group_edges.assign(m.groups.size(), 0);
+  for (const BoundaryEdge& e : m.boundary)
+    if (e.group >= 0 && e.group < static_cast<int>(m.groups.size())) ++r.group_edges[e.group];
+  r.physical = shape_stats(m);
+  if (!frame) return r;
+
+  r.has_frame = true;
+  const std::vector<Eigen::Matrix2d> Mf = frame_matrices(*frame, frame_path);
+  FrameStats& f = r.frame;
+  f.file = frame_path;
+  f.cells = frame->num_cells();
+  std::vector<double> stretch, axis;
+  for (int c = 0; c < frame->num_cells(); ++c) {
+    f.continuous_complexity += std::abs(cell_area(*frame, c)) * std::abs(Mf[c].determinant()) / 4.0;
+    Eigen::JacobiSVD<Eigen::Matrix2d> svd(Mf[c], Eigen::ComputeFullV);
+    const Eigen::Vector2d sv = svd.singularValues();  // decreasing
+    stretch.push_back(sv(0) / sv(1));
+    const Eigen::Vector2d longest = svd.matrixV().col(1);  // smallest sigma of M = largest h
+    double a = std::atan2(longest.y(), longest.x()) * 180 / M_PI;
+    axis.push_back(std::fmod(a + 360.0, 180.0));
+  }
+  f.stretch_median = median(stretch);
+  f.orientation_median_deg = axial_median_deg(axis);
+
+  CellLocator locator(*frame);
+  std::vector<Eigen::Matrix2d> M(m.num_cells());
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const Vec2 x = cell_centroid(m, c);
+    int b = locator.locate(x);
+    if (b < 0) {
+      ++f.cells_outside;
+      b = locator.locate_or_nearest(x);
+    }
+    M[c] = Mf[b];
+  }
+  r.metric = shape_stats(m, M);
+
+  std::vector<double> lengths;
+  double sum = 0;
+  int in_range = 0;
+  const double lo = 1 / std::sqrt(2.0), hi = std::sqrt(2.0);
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const Cell& cell = m.cells[c];
+    for (int i = 0; i < cell.nv; ++i) {
+      const Vec2 e = m.nodes[cell.v[(i + 1) % cell.nv]] - m.nodes[cell.v[i]];
+      const double l = (M[c] * e).norm() / 2.0;
+      lengths.push_back(l);
+      sum += l;
+      if (l >= lo && l <= hi) ++in_range;
+    }
+  }
+  EdgeLengthStats& el = r.metric_edges;
+  el.edges = static_cast<int>(lengths.size());
+  if (!lengths.empty()) {
+    el.min = *std::min_element(lengths.begin(), lengths.end());
+    el.max = *std::max_element(lengths.begin(), lengths.end());
+    el.mean = sum / lengths.size();
+    el.median = median(lengths);
+    el.share_in_range = static_cast<double>(in_range) / lengths.size();
+  }
+  return r;
+}
+
+namespace {
+nlohmann::json shape_json(const ShapeStats& s) {
+  return {{"angle_min_deg", s.angle_min_deg},
+          {"angle_max_deg", s.angle_max_deg},
+          {"angle_mean_deg", s.angle_mean_deg},
+          {"quad_angle_share_80_100", s.quad_angle_share_80_100},
+          {"scaled_jacobian_min", s.scaled_jacobian_min},
+          {"scaled_jacobian_mean", s.scaled_jacobian_mean},
+          {"edge_ratio_median", s.edge_ratio_median},
+          {"orientation_median_deg", s.orientation_median_deg}};
+}
+}  // namespace
+
+nlohmann::json to_json(const QualityReport& r) {
+  nlohmann::json j;
+  j["nodes"] = r.nodes;
+  j["cells"] = r.cells;
+  j["quads"] = r.quads;
+  j["triangles"] = r.triangles;
+  j["area"] = r.area;
+  j["boundary"] = nlohmann::json::array();
+  for (size_t g = 0; g < r.groups.size(); ++g)
+    j["boundary"].push_back({{"name", r.groups[g].name}, {"tag", r.groups[g].tag}, {"edges", r.group_edges[g]}});
+  j["physical"] = shape_json(r.physical);
+  if (r.has_frame) {
+    nlohmann::json metric = shape_json(r.metric);
+    metric["edge_length"] = {{"edges", r.metric_edges.edges},
+                             {"min", r.metric_edges.min},
+                             {"max", r.metric_edges.max},
+                             {"mean", r.metric_edges.mean},
+                             {"median", r.metric_edges.median},
+                             {"share_in_range", r.metric_edges.share_in_range}};
+    j["metric"] = metric;
+    j["frame"] = {{"file", r.frame.file},
+                  {"cells", r.frame.cells},
+                  {"continuous_complexity", r.frame.continuous_complexity},
+                  {"actual_cells", r.cells},
+                  {"cells_over_continuous", r.frame.continuous_complexity > 0 ? r.cells / r.frame.continuous_complexity : 0.0},
+                  {"stretch_median", r.frame.stretch_median},
+                  {"orientation_median_deg", r.frame.orientation_median_deg},
+                  {"cells_outside", r.frame.cells_outside}};
+  }
+  return j;
+}
+
+}  // namespace quadapt

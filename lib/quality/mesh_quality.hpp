@@ -1,0 +1,74 @@
+#pragma once
+// Mesh quality figures reported by the meshquality tool (docs/meshquality.md), in physical
+// space and, given a frame (background mesh with per-cell Vinv, M = V^-1 in the upper-left 2x2
+// of the row-major 3x3; DESIGN.md sections 3-4), in the frame's metric space.
+//
+// Metric space: each cell's vertices are mapped by the M of the background cell that contains
+// the cell's centroid (point location: quality/locate.hpp; a centroid outside the background
+// takes the nearest background cell and is counted in frame.cells_outside).
+// Metric edge length of an edge e of a cell: |M e| / 2. The target element of the frame has
+// edges 2 h1 along v and 2 h2 along w (the representative parallelogram spans +-v, +-w), so a
+// target edge has metric length exactly 1; edges count per cell (an edge shared by two cells
+// is measured twice, once with each cell's M).
+// Continuous element count of the frame: N = int 1/(4 h^2) dA = sum over background cells of
+// area * |det M| / 4 (h^2 = h1 h2 = 1 / |det M|; thesis eq. 5.1 with d = 1/(4h^2)).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+
+namespace quadapt {
+
+/// Angle and Jacobian figures over a set of cells (in one space).
+struct ShapeStats {
+  double angle_min_deg = 0, angle_max_deg = 0, angle_mean_deg = 0;  ///< over all corners
+  double quad_angle_share_80_100 = 0;  ///< share of quad corners with angle in [80, 100] degrees
+  double scaled_jacobian_min = 0, scaled_jacobian_mean = 0;           ///< over cells (cell minimum)
+  double edge_ratio_median = 0;       ///< median over quads of longest / shortest edge
+  double orientation_median_deg = 0;  ///< axial median over quads of the longest edge's direction
+};
+
+struct EdgeLengthStats {
+  int edges = 0;  ///< cell edges measured (shared edges twice)
+  double min = 0, max = 0, mean = 0, median = 0;
+  double share_in_range = 0;  ///< share with 1/sqrt(2) <= length <= sqrt(2)
+};
+
+struct FrameStats {
+  std::string file;
+  int cells = 0;                      ///< background cells
+  double continuous_complexity = 0;   ///< sum area |det M| / 4
+  double stretch_median = 0;          ///< median of sigma_max / sigma_min of M (= h_long / h_short)
+  double orientation_median_deg = 0;  ///< axial median of the long axis (the h_long direction)
+  int cells_outside = 0;              ///< mesh cells whose centroid lies outside the background
+};
+
+struct QualityReport {
+  int nodes = 0, cells = 0, quads = 0, triangles = 0;
+  double area = 0;
+  std::vector<BoundaryGroup> groups;
+  std::vector<int> group_edges;
+  ShapeStats physical;
+  bool has_frame = false;
+  ShapeStats metric;
+  EdgeLengthStats metric_edges;
+  FrameStats frame;
+};
+
+/// Shape statistics of all cells of m, each mapped by M[c] when M is not empty (#cells
+/// matrices), else in physical space.
+ShapeStats shape_stats(const Mesh& m, const std::vector<Eigen::Matrix2d>& M = {});
+
+/// M = upper-left 2x2 of each cell's 9-component Vinv, its second row negated when det M < 0
+/// (a reflection; M^T M, the metric, is unchanged). Throws InputError("PATH: ...") when the
+/// field is missing, has another component count, or a cell's M is not finite or singular.
+std::vector<Eigen::Matrix2d> frame_matrices(const Mesh& frame, const std::string& path);
+
+/// All figures. `frame` may be null; `frame_path` names it in messages and in the report.
+QualityReport measure_quality(const Mesh& m, const Mesh* frame = nullptr, const std::string& frame_path = "");
+
+/// The report as JSON (the keys documented in docs/meshquality.md).
+nlohmann::json to_json(const QualityReport& r);
+
+}  // namespace quadapt

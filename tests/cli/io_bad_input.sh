@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# Bad input: non-zero exit (2), ONE line on stderr naming the file and the problem, nothing
+# written (no output, no report, no temporary file), for meshconvert and meshquality.
+set -euo pipefail
+S=$QUADAPT_SOURCE_DIR
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+good="$S/tests/golden/io/square2_fields.msh"
+mkdir "$T/in" "$T/out"
+
+head -c 400 "$good" > "$T/in/truncated.msh"
+sed 's/^4\.1 0 8$/5.0 0 8/' "$good" > "$T/in/version.msh"
+python3 - "$good" "$T/in/missing_nodes.msh" <<'PY'
+import sys
+t = open(sys.argv[1]).read()
+a, b = t.index("$Nodes"), t.index("$EndNodes") + len("$EndNodes\n")
+open(sys.argv[2], "w").write(t[:a] + t[b:])
+PY
+sed '0,/^0\.5 0 0$/s//nan 0 0/' "$good" > "$T/in/nan.msh"
+sed 's/^1 1 2 5 4$/1 1 4 5 2/' "$good" > "$T/in/inverted.msh"
+cat > "$T/in/triangle.msh" <<'MSH'
+$MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+5
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+5 2 0 0
+$EndNodes
+$Elements
+2
+1 3 2 1 1 1 2 3 4
+2 2 2 1 1 2 5 3
+$EndElements
+MSH
+
+check() {  # check NAME EXPECTED-PROBLEM [extra args]
+  local name=$1 problem=$2
+  shift 2
+  local in="$T/in/$name.msh"
+  for tool in meshconvert meshquality; do
+    local args=("$in")
+    [ "$tool" = meshconvert ] && args+=(-o "$T/out/$name.msh")
+    set +e
+    "$tool" "${args[@]}" "$@" > "$T/stdout" 2> "$T/stderr"
+    local rc=$?
+    set -e
+    if [ $rc -ne 2 ]; then echo "$tool $name: exit $rc, expected 2"; cat "$T/stderr"; exit 1; fi
+    if [ "$(wc -l < "$T/stderr")" -ne 1 ]; then echo "$tool $name: stderr is not one line:"; cat "$T/stderr"; exit 1; fi
+    grep -qF "$in" "$T/stderr" || { echo "$tool $name: message does not name the file: $(cat "$T/stderr")"; exit 1; }
+    grep -qF "$problem" "$T/stderr" || { echo "$tool $name: message lacks '$problem': $(cat "$T/stderr")"; exit 1; }
+    [ ! -s "$T/stdout" ] || { echo "$tool $name: wrote to stdout"; exit 1; }
+    if [ -n "$(ls -A "$T/out")" ]; then echo "$tool $name: left files behind: $(ls -A "$T/out")"; exit 1; fi
+    echo "$tool $name: $(cat "$T/stderr")"
+  done
+}
+
+check truncated "truncated file"
+check version "unsupported MSH format version '5.0'"
+check missing_nodes "\$Nodes"
+check nan "non-finite coordinate"
+check triangle "is a triangle, but quadrilaterals are required" --require quads
+check inverted "is inverted"
+
+# The same files are fine where they are valid: the triangle mesh without --require.
+meshconvert -q "$T/in/triangle.msh" -o "$T/out/ok.msh"
+test -s "$T/out/ok.msh"
+# Never overwrite an input.
+cp "$good" "$T/in/copy.msh"
+set +e
+meshconvert -q "$T/in/copy.msh" -o "$T/in/copy.msh" 2> "$T/stderr"
+rc=$?
+set -e
+[ $rc -eq 2 ] || { echo "overwriting the input: exit $rc"; exit 1; }
+cmp "$good" "$T/in/copy.msh"
+echo "meshconvert, output = input: $(cat "$T/stderr")"
+echo "io_bad_input: ok"
