@@ -145,14 +145,14 @@ class Parser {
   std::vector<Token> tokens_;
   size_t pos_ = 0;
 
-  [[noreturn]] void fail(const Token& t, const std::string& what) const {
+  [[noreturn]] void fail(const Token& t, const std::string& what, const std::string& hint = "") const {
     std::ostringstream os;
     os << "column " << t.column << ": " << what;
     if (t.kind == Token::End)
       os << " at the end";
     else
       os << " near '" << t.text << "'";
-    os << " in: " << src_;
+    os << hint << " in: " << src_;
     throw InputError(os.str());
   }
 
@@ -273,8 +273,8 @@ class Parser {
         expect(")", "')'");
         return expr_unary(f->second, a);
       }
-      fail(t, "unknown name (variables x, y; constants pi, e; functions sin cos tan exp log "
-              "sqrt tanh sinh cosh atan abs pow)");
+      fail(t, "unknown name",
+           " (variables x, y; constants pi, e; functions sin cos tan exp log sqrt tanh sinh cosh atan abs pow)");
     }
     if (t.kind == Token::End) fail(t, "expression ends unexpectedly");
     fail(t, "unexpected token");

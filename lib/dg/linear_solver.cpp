@@ -166,7 +166,7 @@ std::string linear_solver_name(LinearSolverKind kind) {
 Eigen::VectorXd solve_linear(const SparseMatrixCSC& A, const Eigen::VectorXd& b, const LinearSolverOptions& opt,
                              LinearSolveInfo* info_out) {
   LinearSolveInfo info;
-  LinearSolverKind kind = opt.kind == LinearSolverKind::Auto ? LinearSolverKind::GmresBlockILU : opt.kind;
+  LinearSolverKind kind = opt.kind == LinearSolverKind::Auto ? LinearSolverKind::UmfPack : opt.kind;
   info.solver = linear_solver_name(kind);
   VectorXd x;
   const double bnorm = b.norm();

@@ -8,8 +8,7 @@
 //   bicgstab-bilu0 BiCGSTAB with the same preconditioner
 //   gmres-bjacobi  restarted GMRES with block Jacobi (cell blocks)
 //   bicgstab-ilut  Eigen's BiCGSTAB with IncompleteLUT (scalar threshold ILU)
-//   auto           the measured default (docs/bench-dgsolve.md): gmres-bilu0, falling back to
-//                  umfpack when GMRES does not reach the tolerance.
+//   auto           the measured default (docs/bench-dgsolve.md): umfpack.
 // Iterative methods stop at ||b - A x|| <= rtol ||b|| (true residual checked at the end).
 #include <Eigen/Core>
 #include <string>

@@ -1,0 +1,72 @@
+#include "dg/solve.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace quadapt {
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& opt) {
+  DGSolveResult r;
+  auto t0 = std::chrono::steady_clock::now();
+  DGDiscretization dg(mesh, cs, opt.p, opt.dg);
+  SparseMatrixCSC A;
+  Eigen::VectorXd b;
+  dg.assemble(A, b);
+  r.t_assemble = seconds_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  LinearSolverOptions so = opt.solver;
+  so.block_size = dg.dofs_per_cell();
+  r.U = solve_linear(A, b, so, &r.solve);
+  r.t_solve = seconds_since(t0);
+  if (!r.U.allFinite()) throw NumericalError("the DG solution is not finite (singular system?)");
+  A.resize(0, 0);
+  A.data().squeeze();
+
+  t0 = std::chrono::steady_clock::now();
+  r.p = opt.p;
+  r.cells = mesh.num_cells();
+  r.dofs = dg.num_dofs();
+  for (const Face& f : dg.topology().faces)
+    if (!f.is_boundary() && !f.is_conforming()) ++r.hanging_faces;
+  r.l2_error = dg.l2_error(r.U);
+  r.has_functional = dg.has_functional();
+  if (r.has_functional) {
+    r.functional = dg.functional(r.U);
+    r.functional_exact = dg.functional_exact();
+    r.functional_error = std::abs(r.functional_exact - r.functional);
+  }
+  r.t_postprocess = seconds_since(t0);
+  return r;
+}
+
+CellNodeField make_dg_field(const Eigen::VectorXd& U, int p, int cells, const std::string& name) {
+  CellNodeField f;
+  f.name = name;
+  f.ncomp = 1;
+  f.degree = p;
+  f.per_cell = (p + 1) * (p + 1);
+  if (U.size() != static_cast<Eigen::Index>(f.per_cell) * cells)
+    throw InputError("field '" + name + "': " + std::to_string(U.size()) + " coefficients do not match degree " +
+                     std::to_string(p) + " on " + std::to_string(cells) + " cells");
+  f.values.assign(U.data(), U.data() + U.size());
+  return f;
+}
+
+Eigen::VectorXd dg_field_coefficients(const CellNodeField& f, int& p) {
+  p = f.degree;
+  if (f.ncomp != 1 || p < 1 || f.per_cell != (p + 1) * (p + 1))
+    throw InputError("field '" + f.name + "' is not a scalar DG field of tensor GLL type (degree " +
+                     std::to_string(f.degree) + ", " + std::to_string(f.per_cell) + " values per cell)");
+  return Eigen::Map<const Eigen::VectorXd>(f.values.data(), static_cast<Eigen::Index>(f.values.size()));
+}
+
+}  // namespace quadapt

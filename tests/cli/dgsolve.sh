@@ -1,0 +1,108 @@
+#!/usr/bin/env bash
+# CLI test of `dgsolve`: outputs and report, non-conforming input, determinism across thread
+# counts, and bad input (exit 2, one clear line, nothing written).
+set -euo pipefail
+SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+BIN=${QUADAPT_BIN_DIR:-}
+[ -n "$BIN" ] && PATH="$BIN:$PATH"
+command -v dgsolve >/dev/null || { echo "SKIPPED: dgsolve not built"; exit 0; }
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+json() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))$2)" "$1"; }
+MK="$SRC/tests/golden/refine/make_square.py"   # unit-square MSH writer (python only)
+CASES="$SRC/examples/cases"
+
+python3 "$MK" 8 "$T/sq8.msh" bare
+python3 "$MK" 4 "$T/sq4.msh"
+python3 "$MK" 4 "$T/tri.msh" tri bare
+
+# --- a solve: report keys and values, the field u, boundary groups kept
+dgsolve -q "$T/sq8.msh" -c "$CASES/smooth.json" -p 2 -o "$T/sol.msh"
+[ -s "$T/sol.msh" ] && [ -s "$T/sol.json" ] || fail "outputs missing"
+python3 - "$T/sol.json" <<'EOF'
+import json, sys
+r = json.load(open(sys.argv[1]))
+for k in ["cells", "p", "dofs", "l2_error", "functional", "functional_exact", "functional_error", "solver",
+          "time_s", "timings", "peak_memory_mb"]:
+    assert k in r, k
+for k in ["read", "assemble", "solve", "postprocess"]:
+    assert k in r["timings"], k
+assert r["cells"] == 64 and r["p"] == 2 and r["dofs"] == 64 * 9, r
+assert 0 < r["l2_error"] < 1e-3, r["l2_error"]
+assert abs(r["functional_error"] - abs(r["functional_exact"] - r["functional"])) < 1e-15
+assert r["functional_error"] < 1e-4 * r["functional_exact"], r
+assert r["hanging_faces"] == 0
+assert r["solver_relative_residual"] < 1e-10
+EOF
+grep -q '^\$InterpolationScheme' "$T/sol.msh" || fail "no interpolation scheme for u"
+grep -q '"u"' "$T/sol.msh" || fail "no field u"
+for g in bottom right top left; do grep -q "\"$g\"" "$T/sol.msh" || fail "group $g lost"; done
+
+# --- the solution file is again a valid input, its fields are replaced (not accumulated)
+dgsolve -q "$T/sol.msh" -c "$CASES/smooth.json" -p 1 -o "$T/sol1.msh"
+[ "$(grep -c '^\$ElementNodeData' "$T/sol1.msh")" = 1 ] || fail "stale fields kept"
+[ "$(json "$T/sol1.json" '["dofs"]')" = 256 ] || fail "p=1 dofs"
+
+# --- determinism: same output with 1 and 2 threads
+dgsolve -q "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --threads 1 -o "$T/t1.msh"
+dgsolve -q "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --threads 2 -o "$T/t2.msh"
+cmp -s "$T/t1.msh" "$T/t2.msh" || fail "output depends on the thread count"
+
+# --- an explicitly chosen iterative solver gives the same numbers
+dgsolve -q "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --solver gmres-bilu0 -o "$T/it.msh"
+python3 - "$T/t1.json" "$T/it.json" <<'EOF'
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+assert b["solver"] == "gmres-bilu0" and b["solver_iterations"] > 0, b["solver"]
+assert abs(a["l2_error"] - b["l2_error"]) < 1e-8 * a["l2_error"], (a["l2_error"], b["l2_error"])
+EOF
+
+# --- non-conforming input (hanging nodes) made by refine, when it is built
+if command -v refine >/dev/null; then
+  refine -q "$T/sq4.msh" --by B --fraction 0.3 -o "$T/nc.msh"
+  dgsolve -q "$T/nc.msh" -c "$CASES/smooth.json" -p 2 -o "$T/ncsol.msh"
+  [ "$(json "$T/ncsol.json" '["hanging_faces"]')" -gt 0 ] || fail "no hanging faces seen"
+  python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['l2_error'] < 1e-2, r['l2_error']" "$T/ncsol.json"
+fi
+
+# --- bad input: exit 2, one line naming the problem, nothing written
+expect_fail() {  # expect_fail PATTERN MESH CASE P [extra args]
+  local pat=$1 mesh=$2 case=$3 p=$4; shift 4
+  rm -f "$T/bad.msh" "$T/bad.json"
+  set +e
+  dgsolve -q "$mesh" -c "$case" -p "$p" "$@" -o "$T/bad.msh" 2>"$T/err"
+  local rc=$?
+  set -e
+  [ $rc = 2 ] || fail "dgsolve $mesh $case -p $p $* exited $rc, expected 2: $(cat "$T/err")"
+  grep -q -- "$pat" "$T/err" || fail "message '$(cat "$T/err")' lacks '$pat'"
+  [ "$(wc -l <"$T/err")" -le 2 ] || fail "more than one message line: $(cat "$T/err")"
+  [ ! -e "$T/bad.msh" ] && [ ! -e "$T/bad.json" ] || fail "output written on bad input"
+}
+mkcase() { printf '%s\n' "$2" >"$T/$1.json"; }
+mkcase badexpr '{"exact": "sin(x))", "advection": [1, 0]}'
+expect_fail "column 7" "$T/sq4.msh" "$T/badexpr.json" 1
+expect_fail "badexpr.json" "$T/sq4.msh" "$T/badexpr.json" 1
+mkcase badname '{"exact": "2*z", "advection": [1, 0]}'
+expect_fail "unknown name near 'z'" "$T/sq4.msh" "$T/badname.json" 1
+mkcase badkey '{"exact": "x", "advection": [1, 0], "difusion": [[1, 0], [0, 1]]}'
+expect_fail "unknown key 'difusion'" "$T/sq4.msh" "$T/badkey.json" 1
+mkcase badbc '{"exact": "x", "advection": [1, 0], "dirichlet": ["inlet"]}'
+expect_fail "'inlet'" "$T/sq4.msh" "$T/badbc.json" 1
+mkcase badfun '{"exact": "x", "advection": [1, 0], "functional": {"boundary": "outlet"}}'
+expect_fail "'outlet'" "$T/sq4.msh" "$T/badfun.json" 1
+mkcase notjson '{"exact": "x", '
+expect_fail "not valid JSON" "$T/sq4.msh" "$T/notjson.json" 1
+expect_fail "triangle" "$T/tri.msh" "$CASES/smooth.json" 1
+expect_fail "out of range" "$T/sq4.msh" "$CASES/smooth.json" 0
+expect_fail "out of range" "$T/sq4.msh" "$CASES/smooth.json" 9
+expect_fail "unknown linear solver" "$T/sq4.msh" "$CASES/smooth.json" 1 --solver cholesky
+# never overwrite an input
+set +e
+dgsolve -q "$T/sq4.msh" -c "$CASES/smooth.json" -p 1 -o "$T/sq4.msh" 2>"$T/err"
+rc=$?
+set -e
+[ $rc = 2 ] || fail "overwriting the input: exit $rc"
+python3 "$MK" 4 "$T/sq4b.msh"
+cmp -s "$T/sq4.msh" "$T/sq4b.msh" || fail "input modified"
+echo "dgsolve CLI: OK"
