@@ -194,6 +194,24 @@ std::vector<std::vector<int>> split_into_curves(const Mesh& m, const std::vector
 int complete_boundary(Mesh& m, const BoundaryOptions& opt) {
   std::set<Key> covered;
   for (const BoundaryEdge& be : m.boundary) covered.insert(key(be.v[0], be.v[1]));
+  {
+    // Fast path (no topology): every edge used by one cell only is covered already. Free
+    // edges are a subset of those (hanging-node halves are used once but are interior).
+    std::unordered_map<unsigned long long, int> uses;
+    uses.reserve(m.cells.size() * 4);
+    for (const Cell& c : m.cells)
+      for (int e = 0; e < c.nv; ++e) {
+        Key k = key(c.v[e], c.v[(e + 1) % c.nv]);
+        ++uses[(static_cast<unsigned long long>(static_cast<unsigned>(k.first)) << 32) | static_cast<unsigned>(k.second)];
+      }
+    bool complete = true;
+    for (const auto& [k, n] : uses)
+      if (n == 1 && !covered.count(Key{static_cast<int>(k >> 32), static_cast<int>(k & 0xffffffffu)})) {
+        complete = false;
+        break;
+      }
+    if (complete) return 0;
+  }
   std::vector<EdgeNodes> missing;
   for (const EdgeNodes& e : boundary_free_edges(m))
     if (!covered.count(key(e[0], e[1]))) missing.push_back(e);
