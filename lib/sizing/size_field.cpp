@@ -103,7 +103,7 @@ Common setup(const Mesh& shape, const SizeOptions& opt, const std::string& sourc
   if (!(opt.q >= 1)) throw InputError("q must be >= 1");
   if (!(opt.max_anisotropy >= 1)) throw InputError("maximum anisotropy must be >= 1");
   c.hmin = opt.hmin > 0 ? opt.hmin : 1e-6 * std::sqrt(c.area);
-  c.hmax = opt.hmax > 0 ? opt.hmax : 0.5 * std::sqrt(c.area);
+  c.hmax = opt.hmax > 0 ? opt.hmax : 0.125 * std::sqrt(c.area);
   if (!(c.hmin < c.hmax)) throw InputError("need hmin < hmax (got " + num(c.hmin) + ", " + num(c.hmax) + ")");
   c.b.dmin = 1 / (4 * c.hmax * c.hmax);
   c.b.dmax = 1 / (4 * c.hmin * c.hmin);
@@ -126,10 +126,13 @@ void finish(SizeResult& r, const Common& c, const SizeOptions& opt) {
   r.hmax = c.hmax;
   for (int k = 0; k < nc; ++k) {
     r.h[k] = 0.5 / std::sqrt(r.d[k]);
-    double rho = c.s.rho[k];
-    const double lo = 1 / opt.max_anisotropy;
-    if (rho > opt.max_anisotropy || rho < lo) ++r.cells_anisotropy_capped;
-    r.rho[k] = std::clamp(rho, lo, opt.max_anisotropy);
+    // anisotropy: |log ρ| <= log of min(ρ_max, (hmax/h)^2, (h/hmin)^2), so that also the long
+    // axis h1 <= hmax and the short axis h2 >= hmin (d, hence the complexity, is unchanged)
+    const double cap = std::max(1.0, std::min({opt.max_anisotropy, std::pow(c.hmax / r.h[k], 2),
+                                               std::pow(r.h[k] / c.hmin, 2)}));
+    const double rho = c.s.rho[k];
+    if (rho > cap * (1 + 1e-12) || rho < (1 - 1e-12) / cap) ++r.cells_anisotropy_capped;
+    r.rho[k] = std::clamp(rho, 1 / cap, cap);
     if (r.d[k] <= c.b.dmin * (1 + 1e-12)) ++r.cells_at_hmax;
     if (r.d[k] >= c.b.dmax * (1 - 1e-12)) ++r.cells_at_hmin;
   }

@@ -20,8 +20,10 @@
 // Safeguards (all stated in size-solve --help):
 //  - anisotropy ρ = h1/h2 clamped to [1/ρ_max, ρ_max]; B is then re-evaluated from A1 and the
 //    floored A2 >= A1 ρ_max^-(p+1) (estimate/error_model.hpp) when the SHAPE has A1, A2;
-//  - sizes h in [hmin, hmax] (defaults 1e-6·sqrt(|Ω|) and 0.5·sqrt(|Ω|), the latter = one
-//    element covering the domain's area);
+//  - sizes in [hmin, hmax] (defaults 1e-6·sqrt(|Ω|) and 0.125·sqrt(|Ω|): the coarsest
+//    element has a quarter of the domain's width, so a square gets at least 4 x 4 elements):
+//    h = sqrt(h1 h2) is clamped there (re-solving λ), then ρ is capped so that every axis obeys
+//    them too (h2 >= hmin, h1 <= hmax; d unchanged);
 //  - optional gradation: h_k <= g · h_j for face neighbours j (g > 1; exact fixed point);
 //  - B = 0 (no (p+1)-th derivative) gives the maximum size; B = 0 everywhere gives a uniform
 //    density. Non-finite or negative inputs are InputErrors.
@@ -37,7 +39,7 @@ struct SizeOptions {
   double q = 2;                ///< L_q norm of the error model
   double max_anisotropy = 25;  ///< ρ_max (PHiLiP's per-axis [0.2, 5] for L_p-CVT = 25 in h1/h2)
   double hmin = 0;             ///< <= 0: 1e-6 sqrt(|Ω|)
-  double hmax = 0;             ///< <= 0: 0.5 sqrt(|Ω|)
+  double hmax = 0;             ///< <= 0: 0.125 sqrt(|Ω|)
   double gradation = 0;        ///< max h ratio between face neighbours; 0 = off, else > 1
 };
 

@@ -91,7 +91,11 @@ TEST_CASE("safeguards: size bounds and gradation active, complexity still met") 
   SizeResult clamped = solve_feature_size(s, o);
   CHECK(clamped.cells_at_hmin > 0);
   CHECK(clamped.continuous_complexity == doctest::Approx(o.complexity).epsilon(1e-9));
-  for (double h : clamped.h) CHECK(h >= o.hmin * (1 - 1e-12));
+  for (int k = 0; k < s.num_cells(); ++k) {
+    // every half-axis within the bounds: h2 = h/sqrt(rho) >= hmin, h1 = h sqrt(rho) <= hmax
+    CHECK(clamped.h[k] / std::sqrt(clamped.rho[k]) >= o.hmin * (1 - 1e-12));
+    CHECK(clamped.h[k] * std::sqrt(clamped.rho[k]) <= clamped.hmax * (1 + 1e-12));
+  }
   // gradation 1.5 between face neighbours
   o.hmin = 0;
   o.gradation = 1.5;
@@ -113,7 +117,7 @@ TEST_CASE("safeguards: size bounds and gradation active, complexity still met") 
 TEST_CASE("size-solve bad targets: clear errors") {
   Mesh s = shape_of(make_structured_quads(8, 8), 2, sshock);
   SizeOptions o;
-  o.complexity = 5;  // less than one p = 2 element (9 DOFs) with the default hmax
+  o.complexity = 100;  // less than 16 p = 2 elements (the default hmax = 0.125 sqrt(area))
   CHECK_THROWS_WITH_AS(solve_feature_size(s, o, "shape.msh"), doctest::Contains("below the smallest"), InputError);
   o.complexity = 1e9;
   o.hmin = 0.01;  // at most 2500 elements of p = 2

@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# CLI test of `estimate-frame`: the S-shock golden (exact interpolant, 16x16, p = 2), thread
+# determinism, the DG-solution path (when dgsolve exists), and bad input (exit 2, nothing written).
+set -euo pipefail
+SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+BIN=${QUADAPT_BIN_DIR:-}
+[ -n "$BIN" ] && PATH="$BIN:$PATH"
+command -v estimate-frame >/dev/null || { echo "SKIPPED: estimate-frame not built"; exit 0; }
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+json() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))$2)" "$1"; }
+GOLD="$SRC/tests/golden/frame"
+CMP="$SRC/tests/cli/golden_compare.py"
+EXACT="0.75*tanh(4*sin(10*y-5)-24*x+12)"
+python3 "$SRC/tests/golden/refine/make_square.py" 16 "$T/sq16.msh" bare
+
+# --- golden: S-shock exact interpolant; fields and report within rtol 1e-6
+estimate-frame -q "$T/sq16.msh" --exact "$EXACT" -p 2 -o "$T/shape.msh" --threads 2
+[ "$(json "$T/shape.json" '["cells"]')" = 256 ] || fail "cells"
+[ "$(json "$T/shape.json" '["p"]')" = 2 ] || fail "p"
+for f in theta rho B A1 A2 phi p; do grep -q "^\"$f\"\$" "$T/shape.msh" || fail "field $f missing"; done
+! grep -q '^\$ElementNodeData' "$T/shape.msh" || fail "the solution was copied to SHAPE"
+python3 "$CMP" "$T/shape.msh" "$GOLD/sshock16_p2_shape.msh" --rtol 1e-6 --atol 1e-9 || fail "SHAPE differs from the golden"
+python3 "$CMP" "$T/shape.json" "$GOLD/sshock16_p2_shape.json" --rtol 1e-6 --atol 1e-9 || fail "report differs from the golden"
+
+# --- deterministic for any thread count
+estimate-frame -q "$T/sq16.msh" --exact "$EXACT" -p 2 -o "$T/shape1.msh" --threads 1
+cmp -s "$T/shape.msh" "$T/shape1.msh" || fail "1 and 2 threads differ"
+
+# --- physics pin: tanh(50 (x - 0.5)): cells on the front are thin in x (long axis theta ~ pi/2)
+estimate-frame -q "$T/sq16.msh" --exact "tanh(50*(x-0.5))" -p 2 -o "$T/tanh.msh" --patch vertex
+python3 - "$T/tanh.msh" <<'PY'
+import math, sys
+lines = open(sys.argv[1]).read().split("\n")
+def view(name):
+    i = lines.index('"%s"' % name) - 2
+    n = int(lines[i + 8])
+    return [float(l.split()[1]) for l in lines[i + 9:i + 9 + n]]
+th, rho, a1 = view("theta"), view("rho"), view("A1")
+amax = max(a1)
+strong = [k for k in range(len(a1)) if a1[k] >= 0.2 * amax]
+assert len(strong) >= 16, strong
+for k in strong:
+    assert abs(math.cos(th[k])) < 1e-6 and rho[k] > 2, (k, th[k], rho[k])
+PY
+
+# --- the DG solution path (dgsolve output), when the solver is there
+if command -v dgsolve >/dev/null && [ -f "$SRC/examples/cases/sshock.json" ]; then
+  dgsolve -q "$T/sq16.msh" -c "$SRC/examples/cases/sshock.json" -p 2 -o "$T/sol.msh"
+  estimate-frame -q "$T/sol.msh" -o "$T/dgshape.msh"
+  [ "$(json "$T/dgshape.json" '["p"]')" = 2 ] || fail "dg: p"
+  if [ -f "$GOLD/sshock16_p2_dg_shape.msh" ]; then
+    python3 "$CMP" "$T/dgshape.msh" "$GOLD/sshock16_p2_dg_shape.msh" --rtol 1e-5 --atol 1e-8 || fail "DG SHAPE differs from the golden"
+  fi
+else
+  echo "note: dgsolve or examples/cases/sshock.json missing; DG-solution path not exercised"
+fi
+
+# --- bad input: exit 2, one line naming the file, nothing written
+expect_fail() {  # expect_fail PATTERN ARGS...
+  local pat=$1; shift
+  rm -f "$T/bad.msh" "$T/bad.json"
+  set +e
+  estimate-frame -q "$@" -o "$T/bad.msh" 2>"$T/err"
+  local rc=$?
+  set -e
+  [ $rc = 2 ] || fail "estimate-frame $* exited $rc, expected 2: $(cat "$T/err")"
+  grep -q -- "$pat" "$T/err" || fail "message for $*: $(cat "$T/err")"
+  [ ! -e "$T/bad.msh" ] && [ ! -e "$T/bad.json" ] || fail "output written for $*"
+}
+expect_fail "sq16.msh: no DG solution field" "$T/sq16.msh"
+python3 "$SRC/tests/golden/refine/make_square.py" 4 "$T/tri.msh" tri bare
+expect_fail "tri.msh" "$T/tri.msh" --exact x -p 2
+expect_fail "degree" "$T/sq16.msh" --exact "x*y"
+expect_fail "column" "$T/sq16.msh" --exact "x*(y" -p 2
+set +e
+estimate-frame -q "$T/shape.msh" -o "$T/shape.msh" --exact x -p 1 2>"$T/err"; rc=$?
+set -e
+[ $rc = 2 ] || fail "overwriting the input: exit $rc"
+python3 "$CMP" "$T/shape.msh" "$GOLD/sshock16_p2_shape.msh" --rtol 1e-6 --atol 1e-9 >/dev/null || fail "input was modified"
+echo "estimate_frame: OK"

@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# CLI test of `size-solve`: feature-based golden (S-shock 16x16, p = 2, growth 1.5), complexity
+# within 0.1%, the Vinv layout against PHiLiP's fixture, the goal-oriented fit, bad input.
+set -euo pipefail
+SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+SHARED=${QUADAPT_SHARED_DIR:-$SRC/../shared}
+BIN=${QUADAPT_BIN_DIR:-}
+[ -n "$BIN" ] && PATH="$BIN:$PATH"
+command -v size-solve >/dev/null || { echo "SKIPPED: size-solve not built"; exit 0; }
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+json() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))$2)" "$1"; }
+GOLD="$SRC/tests/golden/frame"
+CMP="$SRC/tests/cli/golden_compare.py"
+SHAPE="$GOLD/sshock16_p2_shape.msh"
+
+# --- feature-based golden: growth 1.5 -> C = 1.5 x 256 x 9 = 3456
+size-solve -q "$SHAPE" --growth 1.5 -o "$T/frame.msh"
+python3 - "$T/frame.json" 3456 <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1])); C = float(sys.argv[2])
+assert r["target_complexity"] == C, r
+assert abs(r["continuous_complexity"] - C) <= 1e-3 * C, r
+assert r["p"] == 2 and r["cells"] == 256 and r["current_dofs"] == 2304, r
+for k in ("lambda", "h_min", "h_max", "timings"):
+    assert k in r, k
+assert 0 < r["h_min"] < r["h_max"] <= r["hmax_bound"] * (1 + 1e-12), r
+PY
+python3 "$CMP" "$T/frame.msh" "$GOLD/sshock16_p2_frame.msh" --rtol 1e-6 --atol 1e-9 || fail "FRAME differs from the golden"
+python3 "$CMP" "$T/frame.json" "$GOLD/sshock16_p2_frame.json" --rtol 1e-6 --atol 1e-9 || fail "report differs from the golden"
+for f in Vinv h theta rho; do grep -q "^\"$f\"\$" "$T/frame.msh" || fail "field $f missing"; done
+
+# --- explicit complexity, safeguards on: still within 0.1%
+size-solve -q "$SHAPE" --complexity 5000 --max-anisotropy 5 --gradation 2 -o "$T/f5000.msh"
+python3 - "$T/f5000.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert abs(r["continuous_complexity"] - 5000) <= 5, r
+assert r["rho_max"] <= 5 * (1 + 1e-12), r
+assert r["cells_anisotropy_capped"] > 0, r
+PY
+
+# --- Vinv layout: same view shape as PHiLiP's frame files (9 components, zeros outside the 2x2),
+# and det M integrates to the complexity: sum area_k det(M_k) / 4 = C / (p+1)^2
+python3 - "$T/frame.msh" "$SHARED/reference/philip-fixtures/input_ss15_fb_p2_3.msh" <<'PY'
+import sys
+def views(path):
+    L = open(path).read().split("\n"); out = {}
+    for i, l in enumerate(L):
+        if l == "$ElementData":
+            name = L[i + 2].strip('"'); nr = int(L[i + 3]); j = i + 4 + nr
+            ni = int(L[j]); ncomp = int(L[j + 2]); n = int(L[j + 3]); s = j + 1 + ni
+            out[name] = (ncomp, [list(map(float, x.split()[1:])) for x in L[s:s + n]])
+    return out
+ours, phil = views(sys.argv[1])["Vinv"], views(sys.argv[2])["Vinv"]
+assert ours[0] == phil[0] == 9, (ours[0], phil[0])
+for rows in (ours[1], phil[1]):
+    for v in rows:
+        assert len(v) == 9 and all(v[i] == 0 for i in (2, 5, 6, 7, 8)), v
+# unit-square 16x16: every cell has area 1/256
+tot = sum((v[0] * v[4] - v[1] * v[3]) / 4 / 256 for v in ours[1])
+assert abs(tot - 3456 / 9) < 1e-6 * 384, tot
+PY
+
+# --- goal-oriented: a synthetic DWR on the same mesh meets C and respects r_max, c_max
+python3 "$GOLD/add_view.py" "$SHAPE" "$T/dwr.msh" dwr B
+size-solve -q "$SHAPE" --dwr "$T/dwr.msh" --growth 1.5 -o "$T/goal.msh"
+python3 - "$T/goal.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert abs(r["continuous_complexity"] - 3456) <= 3.456, r
+assert r["alpha_min"] >= 1 / 20 * (1 - 1e-12) and r["alpha_max"] <= 4 * (1 + 1e-12), r
+assert r["options"]["mode"] == "goal", r
+PY
+grep -q '^"alpha"$' "$T/goal.msh" || fail "goal: alpha field missing"
+
+# --- bad input: exit 2, one line naming the problem, nothing written
+expect_fail() {  # expect_fail PATTERN ARGS...
+  local pat=$1; shift
+  rm -f "$T/bad.msh" "$T/bad.json"
+  set +e
+  size-solve -q "$@" -o "$T/bad.msh" 2>"$T/err"
+  local rc=$?
+  set -e
+  [ $rc = 2 ] || fail "size-solve $* exited $rc, expected 2: $(cat "$T/err")"
+  grep -q -- "$pat" "$T/err" || fail "message for $*: $(cat "$T/err")"
+  [ ! -e "$T/bad.msh" ] && [ ! -e "$T/bad.json" ] || fail "output written for $*"
+}
+expect_fail "below the smallest" "$SHAPE" --complexity 50
+expect_fail "exceeds" "$SHAPE" --complexity 1e9 --hmin 0.01
+expect_fail "complexity" "$SHAPE"
+expect_fail "excludes" "$SHAPE" --complexity 100 --growth 2
+python3 "$SRC/tests/golden/refine/make_square.py" 4 "$T/plain.msh" bare
+expect_fail "plain.msh: no cell field" "$T/plain.msh" --growth 1.5
+# DWR on another mesh (a 12x12 grid) and a DWR file without the field
+python3 "$SRC/tests/golden/refine/make_square.py" 12 "$T/sq12.msh"
+python3 "$GOLD/add_view.py" "$T/sq12.msh" "$T/dwr12.msh" dwr B
+expect_fail "dwr12.msh: DWR file is on another mesh" "$SHAPE" --dwr "$T/dwr12.msh" --growth 1.5
+expect_fail "no scalar cell field \"dwr\"" "$SHAPE" --dwr "$SHAPE" --growth 1.5
+expect_fail "outside the range" "$SHAPE" --dwr "$T/dwr.msh" --growth 40
+echo "size_solve: OK"

@@ -1,0 +1,112 @@
+// estimate-frame: per-cell optimal frame shape and error constant from a DG solution
+// (thesis §5.2, eqs. 5.8-5.16; DESIGN.md §4). See docs/estimate-frame.md.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "case/expression.hpp"
+#include "cli/tool.hpp"
+#include "estimate/interpolate.hpp"
+#include "estimate/estimate_frame.hpp"
+#include "io/msh.hpp"
+#include "mesh/validate.hpp"
+
+int main(int argc, char** argv) {
+  using namespace quadapt;
+  Tool tool("estimate-frame", "Optimal frame shape (theta, rho) and error constant B per cell from a DG solution",
+            "For each cell k: the degree-(p+1) polynomial reconstructed from the DG field u over k and "
+            "its face neighbours by H1 projection (thesis eq. 5.8; hanging-node neighbours included; "
+            "--patch vertex adds every cell sharing a vertex), its largest (p+1)-th directional "
+            "derivative A1 with direction phi and the perpendicular one A2 (eqs. 5.10-5.13; A = "
+            "|D^(p+1)u[xi,...,xi]|/(p+1)!, the Taylor term), then the frame: long axis theta = "
+            "phi - pi/2 in [0, pi) and anisotropy rho = h1/h2 = (A1/A2)^(1/(p+1)) >= 1, i.e. elements "
+            "THIN along the largest derivative, and the error constant B of the L_q model e = B "
+            "d^(-q(p+1)/2) (eqs. 5.15-5.16). A2 = 0 is floored at A1 rho_max^-(p+1) (rho <= "
+            "--max-anisotropy); cells whose (p+1)-th term is rounding noise get A1 = A2 = B = 0, "
+            "theta = 0, rho = 1. Output: SOL's geometry and boundary groups with cell fields theta, "
+            "rho, B, A1, A2, phi and p (the DG degree); the solution itself is not copied. Input "
+            "for size-solve. With --exact EXPR -p P the field is instead the degree-P GLL "
+            "interpolant of the expression EXPR(x, y) on the quad mesh SOL (adaptation to a known "
+            "function, no solver).");
+  std::string in, out, patch = "face", exact;
+  int p_exact = 0;
+  EstimateOptions opt;
+  auto& app = tool.app();
+  app.add_option("SOL", in, "DG solution (.msh from dgsolve, with the DG field 'u')")
+      ->required()
+      ->check(CLI::ExistingFile);
+  app.add_option("-o,--output", out, "SHAPE mesh (.msh); report beside it as .json")->required();
+  app.add_option("--field", opt.field, "Name of the DG field")->capture_default_str();
+  app.add_option("--norm-q", opt.q, "Exponent q of the L_q error norm (>= 1)")->capture_default_str();
+  app.add_option("--patch", patch, "Reconstruction patch: face (thesis Fig. 5.1) or vertex (3x3-like)")
+      ->check(CLI::IsMember({"face", "vertex"}))
+      ->capture_default_str();
+  auto* ex = app.add_option("--exact", exact, "Use the GLL interpolant of this expression in x, y instead of the field");
+  auto* pe = app.add_option("-p,--degree", p_exact, "DG degree P of the --exact interpolant (>= 1)");
+  ex->needs(pe);
+  pe->needs(ex);
+  app.add_option("--max-anisotropy", opt.max_anisotropy,
+                 "Numerical cap on rho = h1/h2 (the user limit is size-solve's --max-anisotropy)")
+      ->capture_default_str();
+
+  return tool.run(argc, argv, [&] {
+    tool.input(in);
+    tool.output(out);
+    opt.patch = patch == "vertex" ? PatchKind::Vertex : PatchKind::Face;
+    tool.option("field", opt.field);
+    tool.option("q", opt.q);
+    tool.option("patch", patch);
+    tool.option("max_anisotropy", opt.max_anisotropy);
+    Mesh sol;
+    {
+      auto ph = tool.phase("read");
+      sol = read_msh(in);
+      ValidateOptions v;
+      v.require = CellKind::Quads;
+      validate_mesh(sol, in, v);
+      if (!exact.empty()) {
+        if (p_exact < 1) throw InputError("", "-p must be >= 1");
+        Expr e = parse_expression(exact);
+        sol.set_field(interpolate_dg(sol, p_exact, [&](double x, double y) { return evaluate(e, x, y); }, opt.field));
+        tool.option("exact", exact);
+        tool.option("degree", p_exact);
+      }
+    }
+    EstimateResult r;
+    {
+      auto ph = tool.phase("estimate");
+      r = estimate_frame(sol, opt, in);
+    }
+    Mesh shape = make_shape_mesh(sol, r);
+    auto& rep = tool.report();
+    const int nc = sol.num_cells();
+    const int n = r.p + 1;
+    rep["cells"] = nc;
+    rep["p"] = r.p;
+    rep["dofs"] = static_cast<long long>(nc) * n * n;
+    double a1max = 0, bsum = 0;
+    int flat = 0;
+    std::vector<double> rho;
+    for (int k = 0; k < nc; ++k) {
+      a1max = std::max(a1max, r.A1[k]);
+      if (r.A1[k] == 0) ++flat;
+      rho.push_back(r.rho[k]);
+      // the model's L_q error^q at the current cell sizes (d = 1/area, optimal shape assumed)
+      const double area = std::abs(cell_area(sol, k));
+      bsum += r.B[k] * std::pow(area, (opt.q * n + 2) / 2);
+    }
+    std::sort(rho.begin(), rho.end());
+    rep["A1_max"] = a1max;
+    rep["cells_without_derivative"] = flat;
+    rep["rho_min"] = rho.front();
+    rep["rho_median"] = rho[rho.size() / 2];
+    rep["rho_max"] = rho.back();
+    rep["model_error_at_current_sizes"] = std::pow(bsum, 1 / opt.q);
+    tool.log(std::to_string(nc) + " cells, p = " + std::to_string(r.p) + ", median anisotropy " +
+             std::to_string(rho[rho.size() / 2]) + ", " + std::to_string(flat) + " cells without (p+1)-th derivative");
+    {
+      auto ph = tool.phase("write");
+      write_msh(shape, out);
+    }
+  });
+}
