@@ -50,9 +50,32 @@ if command -v dgsolve >/dev/null && [ -f "$SRC/examples/cases/sshock.json" ]; th
   dgsolve -q "$T/sq16.msh" -c "$SRC/examples/cases/sshock.json" -p 2 -o "$T/sol.msh"
   estimate-frame -q "$T/sol.msh" -o "$T/dgshape.msh"
   [ "$(json "$T/dgshape.json" '["p"]')" = 2 ] || fail "dg: p"
-  if [ -f "$GOLD/sshock16_p2_dg_shape.msh" ]; then
-    python3 "$CMP" "$T/dgshape.msh" "$GOLD/sshock16_p2_dg_shape.msh" --rtol 1e-5 --atol 1e-8 || fail "DG SHAPE differs from the golden"
-  fi
+  # Golden from the DG solution. Compared field-wise with tolerances that survive solver
+  # tolerance changes in dgsolve: A1, A2, B, rho to rel 1e-4 of the field's largest value; theta
+  # where rho > 1.2 (elsewhere the direction is ill-conditioned) to 1e-3 rad modulo pi.
+  python3 - "$T/dgshape.msh" "$GOLD/sshock16_p2_dg_shape.msh" <<'PY'
+import math, sys
+def views(path):
+    L = open(path).read().split("\n"); out = {}
+    for i, l in enumerate(L):
+        if l == "$ElementData":
+            name = L[i + 2].strip('"'); nr = int(L[i + 3]); j = i + 4 + nr
+            ni = int(L[j]); n = int(L[j + 3]); s = j + 1 + ni
+            out[name] = [float(x.split()[1]) for x in L[s:s + n]]
+    return out
+a, b = views(sys.argv[1]), views(sys.argv[2])
+bad = []
+for f in ("A1", "A2", "B", "rho"):
+    scale = max(abs(v) for v in b[f])
+    bad += [(f, k, a[f][k], b[f][k]) for k in range(len(b[f])) if abs(a[f][k] - b[f][k]) > 1e-4 * scale]
+for k in range(len(b["theta"])):
+    if b["rho"][k] > 1.2:
+        d = abs(a["theta"][k] - b["theta"][k]) % math.pi
+        if min(d, math.pi - d) > 1e-3:
+            bad.append(("theta", k, a["theta"][k], b["theta"][k]))
+if bad:
+    print("DG SHAPE differs from the golden:", bad[:10]); sys.exit(1)
+PY
 else
   echo "note: dgsolve or examples/cases/sshock.json missing; DG-solution path not exercised"
 fi
