@@ -22,13 +22,6 @@ GmshSession::GmshSession(bool verbose) {
     }
   }
   ++g_sessions;
-  try {
-    gmsh::clear();
-  } catch (const std::string& s) {
-    --g_sessions;
-    if (g_sessions == 0) gmsh::finalize();
-    throw ExternalError("Gmsh: clear failed: " + s);
-  }
 }
 
 GmshSession::~GmshSession() {

@@ -15,8 +15,8 @@ namespace quadapt {
 /// Keeps the Gmsh SDK initialised while alive. Sessions nest through a reference count: the
 /// first one initialises Gmsh (no configuration files, General.Terminal = 0 unless `verbose`,
 /// General.AbortOnError = 0 so that errors inside Gmsh's OpenMP regions do not terminate the
-/// process), the last one finalizes it. Every session starts from an empty model and no views
-/// (gmsh::clear()).
+/// process), the last one finalizes it. The outermost session starts from an empty model and
+/// no views; nested sessions share the current model (call gmsh::clear() to start afresh).
 class GmshSession {
  public:
   explicit GmshSession(bool verbose = false);
