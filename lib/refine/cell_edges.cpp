@@ -1,7 +1,9 @@
 #include "refine/cell_edges.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
+#include <unordered_map>
 
 #include "core/error.hpp"
 
@@ -13,6 +15,40 @@ struct Piece {
   int face, side;
 };
 bool whole(double a, double b) { return std::min(a, b) == 0.0 && std::max(a, b) == 1.0; }
+
+// build_topology reports the pieces of a non-conformity other than 2:1 (e.g. four fine faces
+// along one coarse edge) as boundary faces. On a real boundary two free edges leaving the same
+// node never overlap; at such an interface the fine edges lie inside the coarse one. Refuse them.
+void check_free_edges(const Mesh& m, const CellEdges& edges) {
+  struct Free {
+    int cell, edge, to;
+  };
+  std::unordered_multimap<int, Free> at;
+  for (int c = 0; c < m.num_cells(); ++c)
+    for (int e = 0; e < m.cells[c].nv; ++e)
+      if (edges[c][e].kind == EdgeKind::Boundary) {
+        const int a = m.cells[c].v[e], b = m.cells[c].v[(e + 1) % m.cells[c].nv];
+        at.emplace(a, Free{c, e, b});
+        at.emplace(b, Free{c, e, a});
+      }
+  for (const auto& [a, f] : at) {
+    const Vec2 &pa = m.nodes[a], d = m.nodes[f.to] - pa;
+    const double len2 = d.squaredNorm();
+    auto range = at.equal_range(a);
+    for (auto it = range.first; it != range.second; ++it) {
+      const Free& g = it->second;
+      if (g.cell == f.cell && g.edge == f.edge) continue;
+      const Vec2 q = m.nodes[g.to] - pa;
+      const double s = q.dot(d) / len2;
+      const double off = std::abs(d.x() * q.y() - d.y() * q.x()) / std::sqrt(len2);
+      if (g.to != f.to && s > 0 && s < 1 && off <= 1e-9 * std::sqrt(len2))
+        throw InputError("mesh", "edge " + std::to_string(f.edge) + " of cell " + std::to_string(f.cell) +
+                                     " is matched neither by one neighbour edge nor by two halves (cell " +
+                                     std::to_string(g.cell) + " lies along part of it): only conforming "
+                                     "and 2:1 non-conforming meshes are supported");
+    }
+  }
+}
 }  // namespace
 
 CellEdges classify_cell_edges(const Mesh& m, const Topology& t) {
@@ -67,6 +103,7 @@ CellEdges classify_cell_edges(const Mesh& m, const Topology& t) {
       if (ce.hanging_node < 0) throw InputError("mesh", where + ": cannot find its hanging node");
     }
   }
+  check_free_edges(m, out);
   return out;
 }
 

@@ -34,7 +34,9 @@ struct CellEdge {
 using CellEdges = std::vector<std::array<CellEdge, 4>>;
 
 /// Classifies every cell edge from the faces of `t` = build_topology(m).
-/// Throws InputError("mesh: ...") when a cell edge is covered by more than two faces.
+/// Throws InputError("mesh: ...") when a cell edge is covered by more than two faces, or when two
+/// free (boundary-kind) edges overlap: a non-conformity other than 2:1, e.g. four fine faces along
+/// one coarse edge, which build_topology leaves as unmatched "boundary" faces.
 CellEdges classify_cell_edges(const Mesh& m, const Topology& t);
 
 /// Number of hanging nodes of the mesh: the number of coarse edges (each holds exactly one).

@@ -397,3 +397,22 @@ TEST_CASE("split_cells refuses unbalanced flags") {
   CHECK(flags_balanced(ce, flags));
   CHECK_NOTHROW(split_cells(r, ce, flags));
 }
+
+TEST_CASE("a 4:1 interface (four faces along one coarse edge) is refused, not taken for a boundary") {
+  // Coarse cell [0,1]^2 beside four cells of height 1/4 on [1,1.25] x [0,1].
+  Mesh m;
+  m.nodes = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int j = 1; j <= 3; ++j) m.nodes.push_back({1, j / 4.0});      // 4, 5, 6
+  for (int j = 0; j <= 4; ++j) m.nodes.push_back({1.25, j / 4.0});   // 7 .. 11
+  const int right[5] = {1, 4, 5, 6, 2};
+  m.cells.push_back(Cell{{0, 1, 2, 3}, 4});
+  for (int j = 0; j < 4; ++j) m.cells.push_back(Cell{{right[j], 7 + j, 8 + j, right[j + 1]}, 4});
+  CHECK_THROWS_WITH_AS(refine_mesh(m, {}, nullptr, "x.msh"), doctest::Contains("x.msh: "), InputError);
+  // The same fine cells against two coarse halves (2:1) are fine.
+  Mesh ok = m;
+  ok.cells[0] = Cell{{0, 1, 5, 3}, 4};
+  ok.nodes[3] = {0, 0.5};
+  ok.cells.push_back(Cell{{3, 5, 2, 12}, 4});
+  ok.nodes.push_back({0, 1});
+  CHECK_NOTHROW(refine_mesh(ok, {}));
+}
