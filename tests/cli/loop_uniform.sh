@@ -20,15 +20,7 @@ cat > "$T/smooth.json" <<'JSON'
 { "diffusion": [[1, 0], [0, 1]], "advection": [1, 0.5],
   "exact": "sin(pi*x)*sin(pi*y) + x*y", "functional": {"boundary": "right"} }
 JSON
-cat > "$T/sq.geo" <<'GEO'
-Point(1) = {0,0,0}; Point(2) = {1,0,0}; Point(3) = {1,1,0}; Point(4) = {0,1,0};
-Line(1) = {1,2}; Line(2) = {2,3}; Line(3) = {3,4}; Line(4) = {4,1};
-Curve Loop(1) = {1,2,3,4}; Plane Surface(1) = {1};
-Transfinite Curve{1,2,3,4} = 5; Transfinite Surface{1}; Recombine Surface{1};
-Physical Curve("bottom") = {1}; Physical Curve("right") = {2}; Physical Curve("top") = {3};
-Physical Curve("left") = {4}; Physical Surface("domain") = {1};
-GEO
-gmsh -2 -format msh41 -o "$T/sq4.msh" "$T/sq.geo" >/dev/null 2>&1 || fail "gmsh could not mesh the square"
+gmsh -2 -format msh41 -setnumber N 4 -o "$T/sq4.msh" "$SRC/examples/geometry/unit_square.geo" >/dev/null 2>&1 || fail "gmsh could not mesh the square"
 
 LOOP=(CASE="$T/smooth.json" MESH="$T/sq4.msh" P=1 METHOD=uniform MODE=feature STEPS=2 GROWTH=1.5
       OUT="$T/run" PICTURES=no)

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # meshplot CLI: edges, scalar field with --log10, frame glyphs, window, PNG, and bad input.
 set -euo pipefail
-BIN="${QUADAPT_BIN_DIR:-$(cd "$(dirname "$0")/../.." && pwd)/build/bin}"
+SRC="${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}"
+BIN="${QUADAPT_BIN_DIR:-$SRC/build/bin}"
 export PATH="$BIN:$PATH"
 command -v meshplot >/dev/null || { echo "SKIPPED: meshplot not built"; exit 0; }
 command -v gmsh >/dev/null || { echo "SKIPPED: gmsh (the program) not installed"; exit 0; }
@@ -10,15 +11,7 @@ T="$(mktemp -d)"; trap 'rm -rf "$T"' EXIT
 cd "$T"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
-cat > sq.geo <<'GEO'
-Point(1) = {0,0,0}; Point(2) = {1,0,0}; Point(3) = {1,1,0}; Point(4) = {0,1,0};
-Line(1) = {1,2}; Line(2) = {2,3}; Line(3) = {3,4}; Line(4) = {4,1};
-Curve Loop(1) = {1,2,3,4}; Plane Surface(1) = {1};
-Transfinite Curve{1,2,3,4} = 9; Transfinite Surface{1}; Recombine Surface{1};
-Physical Curve("bottom") = {1}; Physical Curve("right") = {2}; Physical Curve("top") = {3};
-Physical Curve("left") = {4}; Physical Surface("domain") = {1};
-GEO
-gmsh -2 -format msh41 -o sq.msh sq.geo >/dev/null 2>&1 || fail "gmsh could not mesh the square"
+gmsh -2 -format msh41 -setnumber N 8 -o sq.msh "$SRC/examples/geometry/unit_square.geo" >/dev/null 2>&1 || fail "gmsh could not mesh the square"
 
 # Append two $ElementData views: dwr = 10^-(1 + 7 x_c) (known log10 range) and a frame Vinv
 # with V = R(30 deg) diag(0.01, 0.05) in every cell.
