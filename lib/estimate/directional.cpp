@@ -1,29 +1,37 @@
 #include "estimate/directional.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace quadapt {
 
-double directional_value(const std::vector<double>& a, double phi) {
+namespace {
+constexpr int kMaxDegree = 63;
+// Σ a_i c^i s^(n-i) without allocation (n <= kMaxDegree).
+inline double eval_cs(const std::vector<double>& a, double c, double s) {
   const int n = static_cast<int>(a.size()) - 1;
-  const double c = std::cos(phi), s = std::sin(phi);
-  // Σ a_i c^i s^(n-i), Horner in c/s is unstable near s = 0; use explicit powers.
-  double v = 0, ci = 1;
-  std::vector<double> sp(n + 1);
+  double sp[kMaxDegree + 1];
   sp[0] = 1;
   for (int k = 1; k <= n; ++k) sp[k] = sp[k - 1] * s;
+  double v = 0, ci = 1;
   for (int i = 0; i <= n; ++i) {
     v += a[i] * ci * sp[n - i];
     ci *= c;
   }
   return v;
 }
+}  // namespace
+
+double directional_value(const std::vector<double>& a, double phi) {
+  return eval_cs(a, std::cos(phi), std::sin(phi));
+}
 
 double directional_derivative(const std::vector<double>& a, double phi) {
   // d/dφ Σ a_i c^i s^(n-i) = Σ a_i [ -i c^(i-1) s^(n-i+1) + (n-i) c^(i+1) s^(n-i-1) ]
   const int n = static_cast<int>(a.size()) - 1;
   const double c = std::cos(phi), s = std::sin(phi);
-  std::vector<double> cp(n + 2), sp(n + 2);
+  double cp[kMaxDegree + 2], sp[kMaxDegree + 2];
   cp[0] = sp[0] = 1;
   for (int k = 1; k <= n + 1; ++k) { cp[k] = cp[k - 1] * c; sp[k] = sp[k - 1] * s; }
   double v = 0;
@@ -40,12 +48,15 @@ DirectionalExtrema directional_extrema(const std::vector<double>& a) {
   double scale = 0;
   for (double v : a) scale = std::max(scale, std::abs(v));
   if (!(scale > 0) || !std::isfinite(scale)) return r;
-  const int N = 720;
+  if (static_cast<int>(a.size()) - 1 > kMaxDegree) throw std::invalid_argument("directional_extrema: degree > 63");
+  // |P| is a trigonometric polynomial of degree n on [0, π): 60 n samples put several in every
+  // lobe, so the best sample brackets the global maximum
+  const int N = std::max(120, 60 * (static_cast<int>(a.size()) - 1));
   const double dphi = M_PI / N;
   int best = 0;
   double bestv = -1;
   for (int k = 0; k < N; ++k) {
-    const double v = std::abs(directional_value(a, k * dphi));
+    const double v = std::abs(eval_cs(a, std::cos(k * dphi), std::sin(k * dphi)));
     if (v > bestv * (1 + 1e-12)) {
       bestv = v;
       best = k;

@@ -7,7 +7,7 @@
 // uses). Then
 //   A1 = max_φ |P(ξ(φ))|,  φ1 = argmax in [0, π)   (|P| is π-periodic),
 //   A2 = |P(ξ(φ1 + π/2))|                          (perpendicular direction, eq. 5.13).
-// The maximum is found by sampling 720 directions and refining the best sample by bisection on the
+// The maximum is found by sampling max(120, 60 n) directions and refining the best sample by bisection on the
 // zero of dP/dφ (to ~1e-15 rad). When several directions tie (to rounding) the smallest φ wins.
 // All values are >= 0 and finite for finite input; a = 0 gives A1 = A2 = 0, φ1 = 0.
 #include <vector>

@@ -1,8 +1,7 @@
 #include "estimate/reconstruct.hpp"
 
-#include <Eigen/Cholesky>
 #include <Eigen/Dense>
-#include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -47,15 +46,54 @@ std::vector<double> PatchPolynomial::top_homogeneous() const {
 
 PatchReconstructor::PatchReconstructor(const Mesh& mesh, const std::vector<double>& values, int p,
                                        int n)
-    : mesh_(mesh), values_(values), p_(p), n_(n), basis_(p), rule_(gauss_legendre(n + 1)),
-      exps_(monomial_exponents(n)) {
+    : mesh_(mesh), p_(p), n_(n), rule_(gauss_legendre(std::max(n, 1) + 1)), exps_(monomial_exponents(n)) {
   if (p < 1 || n < 1) throw InputError("reconstruction: need p >= 1 and degree n >= 1");
   if (!mesh.all_quads()) throw InputError("reconstruction: the DG field needs an all-quad mesh");
-  const size_t per = static_cast<size_t>(p + 1) * (p + 1);
+  const int np1 = p + 1;
+  const size_t per = static_cast<size_t>(np1) * np1;
   if (values.size() != per * mesh.cells.size())
     throw InputError("reconstruction: DG field has " + std::to_string(values.size()) +
                      " values, expected " + std::to_string(per * mesh.cells.size()) +
                      " ((p+1)^2 per cell, p = " + std::to_string(p) + ")");
+  const int nq1 = static_cast<int>(rule_.x.size());
+  nq_ = nq1 * nq1;
+  LagrangeBasis1D basis(p);
+  std::vector<Eigen::VectorXd> lv(nq1), ld(nq1);
+  for (int q = 0; q < nq1; ++q) {
+    lv[q] = basis.eval(rule_.x[q]);
+    ld[q] = basis.deriv(rule_.x[q]);
+  }
+  const int nc = mesh.num_cells();
+  qdata_.resize(static_cast<size_t>(nc) * nq_ * 6);
+#pragma omp parallel for schedule(static)
+  for (int c = 0; c < nc; ++c) {
+    const double* u = values.data() + static_cast<size_t>(c) * per;
+    double* out = qdata_.data() + static_cast<size_t>(c) * nq_ * 6;
+    for (int qj = 0; qj < nq1; ++qj)
+      for (int qi = 0; qi < nq1; ++qi, out += 6) {
+        const double xi = rule_.x[qi], eta = rule_.x[qj];
+        const Eigen::Matrix2d J = map_jacobian(mesh, c, xi, eta);
+        const double det = J(0, 0) * J(1, 1) - J(0, 1) * J(1, 0);
+        double uv = 0, ux = 0, ue = 0;
+        for (int j = 0; j < np1; ++j)
+          for (int i = 0; i < np1; ++i) {
+            const double c0 = u[i + np1 * j];
+            uv += c0 * lv[qi][i] * lv[qj][j];
+            ux += c0 * ld[qi][i] * lv[qj][j];
+            ue += c0 * lv[qi][i] * ld[qj][j];
+          }
+        // physical gradient = J^{-T} (du/dxi, du/deta)
+        const double gx = (J(1, 1) * ux - J(1, 0) * ue) / det;
+        const double gy = (-J(0, 1) * ux + J(0, 0) * ue) / det;
+        const Vec2 x = map_to_physical(mesh, c, xi, eta);
+        out[0] = x.x();
+        out[1] = x.y();
+        out[2] = std::sqrt(rule_.w[qi] * rule_.w[qj] * std::abs(det));
+        out[3] = uv;
+        out[4] = gx;
+        out[5] = gy;
+      }
+  }
 }
 
 PatchPolynomial PatchReconstructor::reconstruct(int cell, const std::vector<int>& patch) const {
@@ -70,58 +108,34 @@ PatchPolynomial PatchReconstructor::reconstruct(int cell, const std::vector<int>
   poly.scale = H;
 
   const int nm = static_cast<int>(exps_.size());
-  const int np1 = p_ + 1;
-  const int nq = static_cast<int>(rule_.x.size());
-  // 1D basis values/derivatives at the quadrature points: [q][i]
-  std::vector<Eigen::VectorXd> lv(nq), ld(nq);
-  for (int q = 0; q < nq; ++q) {
-    lv[q] = basis_.eval(rule_.x[q]);
-    ld[q] = basis_.deriv(rule_.x[q]);
-  }
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(nm, nm);
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(nm);
-  Eigen::VectorXd m(nm), mx(nm), my(nm);
+  const int rows = 3 * nq_ * static_cast<int>(patch.size());
+  Eigen::MatrixXd G(rows, nm);
+  Eigen::VectorXd f(rows);
   std::vector<double> ps(n_ + 1), pt(n_ + 1);
   const double invH = 1.0 / H;
-
+  int r = 0;
   for (int c : patch) {
-    const double* u = values_.data() + static_cast<size_t>(c) * np1 * np1;
-    for (int qj = 0; qj < nq; ++qj)
-      for (int qi = 0; qi < nq; ++qi) {
-        const double xi = rule_.x[qi], eta = rule_.x[qj];
-        const Eigen::Matrix2d J = map_jacobian(mesh_, c, xi, eta);
-        const double detJ = J.determinant();
-        const double w = rule_.w[qi] * rule_.w[qj] * std::abs(detJ);
-        // u and its reference gradient
-        double uv = 0, ux = 0, ue = 0;
-        for (int j = 0; j < np1; ++j)
-          for (int i = 0; i < np1; ++i) {
-            const double c0 = u[i + np1 * j];
-            uv += c0 * lv[qi][i] * lv[qj][j];
-            ux += c0 * ld[qi][i] * lv[qj][j];
-            ue += c0 * lv[qi][i] * ld[qj][j];
-          }
-        // physical gradient = J^{-T} (du/dxi, du/deta)
-        const Eigen::Vector2d g = J.transpose().partialPivLu().solve(Eigen::Vector2d(ux, ue));
-        const Vec2 x = map_to_physical(mesh_, c, xi, eta);
-        const double s = (x.x() - poly.center.x()) * invH, t = (x.y() - poly.center.y()) * invH;
-        powers(s, n_, ps.data());
-        powers(t, n_, pt.data());
-        for (int k = 0; k < nm; ++k) {
-          const int i = exps_[k].first, j = exps_[k].second;
-          m[k] = ps[i] * pt[j];
-          mx[k] = i > 0 ? i * ps[i - 1] * pt[j] * invH : 0.0;
-          my[k] = j > 0 ? j * ps[i] * pt[j - 1] * invH : 0.0;
-        }
-        A.noalias() += w * (m * m.transpose() + mx * mx.transpose() + my * my.transpose());
-        b.noalias() += w * (m * uv + mx * g.x() + my * g.y());
+    const double* q = qdata_.data() + static_cast<size_t>(c) * nq_ * 6;
+    for (int k = 0; k < nq_; ++k, q += 6, r += 3) {
+      const double s = (q[0] - poly.center.x()) * invH, t = (q[1] - poly.center.y()) * invH, sw = q[2];
+      powers(s, n_, ps.data());
+      powers(t, n_, pt.data());
+      for (int m = 0; m < nm; ++m) {
+        const int i = exps_[m].first, j = exps_[m].second;
+        G(r, m) = sw * ps[i] * pt[j];
+        G(r + 1, m) = i > 0 ? sw * i * ps[i - 1] * pt[j] * invH : 0.0;
+        G(r + 2, m) = j > 0 ? sw * j * ps[i] * pt[j - 1] * invH : 0.0;
       }
+      f[r] = sw * q[3];
+      f[r + 1] = sw * q[4];
+      f[r + 2] = sw * q[5];
+    }
   }
-  Eigen::LDLT<Eigen::MatrixXd> ldlt(A);
-  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0))
-    throw NumericalError("reconstruction: singular H1 normal matrix on the patch of cell " +
-                         std::to_string(cell));
-  poly.coeffs = ldlt.solve(b);
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(G);
+  const auto R = qr.matrixQR().topRows(nm).diagonal().cwiseAbs();
+  if (!(R.minCoeff() > 1e-13 * R.maxCoeff()))
+    throw NumericalError("reconstruction: rank-deficient H1 problem on the patch of cell " + std::to_string(cell));
+  poly.coeffs = qr.solve(f);
   return poly;
 }
 

@@ -48,7 +48,7 @@ struct PatchPolynomial {
 class PatchReconstructor {
  public:
   /// `values`: the DG coefficients, mesh.num_cells() * (p+1)^2 (cell-major). Requires an
-  /// all-quad mesh (throws InputError otherwise). n >= 1.
+  /// all-quad mesh (throws InputError otherwise). n >= 1. Keeps a reference to `mesh` only.
   PatchReconstructor(const Mesh& mesh, const std::vector<double>& values, int p, int n);
 
   /// ũ on the patch `patch` (cell indices; must contain `cell`), centred on `cell`.
@@ -61,11 +61,12 @@ class PatchReconstructor {
 
  private:
   const Mesh& mesh_;
-  const std::vector<double>& values_;
   int p_, n_;
-  LagrangeBasis1D basis_;
   Rule1D rule_;
   std::vector<std::pair<int, int>> exps_;
+  int nq_ = 0;                 ///< quadrature points per cell, (n+1)^2
+  /// Per cell and quadrature point: x, y, sqrt(w |J|), u, du/dx, du/dy (precomputed once).
+  std::vector<double> qdata_;
 };
 
 }  // namespace quadapt

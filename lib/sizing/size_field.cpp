@@ -43,7 +43,7 @@ struct Bounds {
 };
 
 // h_k <= g h_j for face neighbours: exact fixed point by processing cells in increasing h.
-int apply_gradation(std::vector<double>& d, const Topology& topo, double g) {
+int apply_gradation(std::vector<double>& d, const std::vector<std::vector<int>>& nbrs, double g) {
   const int n = static_cast<int>(d.size());
   std::vector<double> h(n);
   for (int k = 0; k < n; ++k) h[k] = 0.5 / std::sqrt(d[k]);
@@ -55,7 +55,7 @@ int apply_gradation(std::vector<double>& d, const Topology& topo, double g) {
     auto [hk, k] = pq.top();
     pq.pop();
     if (hk > h[k]) continue;  // stale
-    for (int j : topo.neighbours(k))
+    for (int j : nbrs[k])
       if (h[j] > g * hk) {
         h[j] = g * hk;
         pq.emplace(h[j], j);
@@ -90,7 +90,7 @@ struct Common {
   double hmin = 0, hmax = 0;
   Bounds b{};
   bool graded = false;
-  Topology topo;
+  std::vector<std::vector<int>> nbrs;  ///< face neighbours (gradation only)
 };
 
 Common setup(const Mesh& shape, const SizeOptions& opt, const std::string& source) {
@@ -110,7 +110,9 @@ Common setup(const Mesh& shape, const SizeOptions& opt, const std::string& sourc
   if (opt.gradation != 0) {
     if (!(opt.gradation > 1)) throw InputError("gradation must be > 1 (or 0 = off), got " + num(opt.gradation));
     c.graded = true;
-    c.topo = build_topology(shape);
+    Topology topo = build_topology(shape);
+    c.nbrs.resize(shape.num_cells());
+    for (int k = 0; k < shape.num_cells(); ++k) c.nbrs[k] = topo.neighbours(k);
   }
   return c;
 }
@@ -200,7 +202,7 @@ SizeResult solve_feature_size(const Mesh& shape, const SizeOptions& opt, const s
   auto density = [&](double K, std::vector<double>& d) {
     d.resize(nc);
     for (int k = 0; k < nc; ++k) d[k] = std::clamp(K * b[k], c.b.dmin, c.b.dmax);
-    if (c.graded) r.cells_graded = apply_gradation(d, c.topo, opt.gradation);
+    if (c.graded) r.cells_graded = apply_gradation(d, c.nbrs, opt.gradation);
   };
   std::vector<double> d;
   auto N = [&](double logK) {
@@ -211,7 +213,7 @@ SizeResult solve_feature_size(const Mesh& shape, const SizeOptions& opt, const s
   const double Cmin = continuous_complexity(c.s.area, std::vector<double>(nc, c.b.dmin), c.s.p);
   std::vector<double> dsup(nc);
   for (int k = 0; k < nc; ++k) dsup[k] = b[k] > 0 ? c.b.dmax : c.b.dmin;
-  if (c.graded) apply_gradation(dsup, c.topo, opt.gradation);
+  if (c.graded) apply_gradation(dsup, c.nbrs, opt.gradation);
   const double Cmax = continuous_complexity(c.s.area, dsup, c.s.p);
   const double C = opt.complexity;
   if (C < Cmin * (1 - 1e-12))
@@ -282,7 +284,7 @@ SizeResult solve_goal_size(const Mesh& shape, const std::vector<double>& eta_in,
                                      : goal_alpha(eta[k], std::exp(log_eta_ref), emin, emax, gopt.r_max, gopt.c_max);
       d[k] = std::clamp(1.0 / (r.alpha[k] * c.s.area[k]), c.b.dmin, c.b.dmax);
     }
-    if (c.graded) r.cells_graded = apply_gradation(d, c.topo, opt.gradation);
+    if (c.graded) r.cells_graded = apply_gradation(d, c.nbrs, opt.gradation);
     return continuous_complexity(c.s.area, d, c.s.p);
   };
   const double C = opt.complexity;
