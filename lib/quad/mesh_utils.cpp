@@ -1,0 +1,187 @@
+#include "quad/mesh_utils.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <sstream>
+#include <unordered_map>
+
+#include "core/error.hpp"
+
+namespace quadapt {
+
+namespace {
+std::uint64_t key(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+std::uint64_t ukey(int a, int b) { return a < b ? key(a, b) : key(b, a); }
+
+std::string at(const Vec2& p) {
+  std::ostringstream s;
+  s << "(" << p.x() << ", " << p.y() << ")";
+  return s.str();
+}
+}  // namespace
+
+std::vector<std::array<int, 2>> free_edges(const Mesh& m) {
+  // directed edge -> count; undirected -> count
+  std::unordered_map<std::uint64_t, int> directed, undirected;
+  directed.reserve(4 * m.cells.size());
+  undirected.reserve(4 * m.cells.size());
+  for (const auto& c : m.cells)
+    for (int i = 0; i < c.nv; ++i) {
+      int a = c.v[i], b = c.v[(i + 1) % c.nv];
+      if (++directed[key(a, b)] > 1)
+        throw InputError("mesh: edge between nodes at " + at(m.nodes[a]) + " and " + at(m.nodes[b]) +
+                         " is used twice in the same direction (inconsistent orientation or overlapping cells)");
+      if (++undirected[ukey(a, b)] > 2)
+        throw InputError("mesh: edge between nodes at " + at(m.nodes[a]) + " and " + at(m.nodes[b]) +
+                         " is shared by more than two cells");
+    }
+  std::vector<std::array<int, 2>> out;
+  for (const auto& c : m.cells)
+    for (int i = 0; i < c.nv; ++i) {
+      int a = c.v[i], b = c.v[(i + 1) % c.nv];
+      if (undirected[ukey(a, b)] == 1) out.push_back({a, b});
+    }
+  return out;
+}
+
+std::vector<std::vector<int>> boundary_loops(const Mesh& m) {
+  auto fe = free_edges(m);
+  std::unordered_map<int, int> next;
+  next.reserve(fe.size());
+  for (const auto& e : fe)
+    if (!next.emplace(e[0], e[1]).second)
+      throw InputError("mesh: boundary node at " + at(m.nodes[e[0]]) +
+                       " starts two boundary edges (the domain is pinched there)");
+  std::vector<std::vector<int>> loops;
+  std::unordered_map<int, char> used;
+  for (const auto& e : fe) {
+    if (used.count(e[0])) continue;
+    std::vector<int> loop;
+    int v = e[0];
+    while (!used.count(v)) {
+      used[v] = 1;
+      loop.push_back(v);
+      auto it = next.find(v);
+      if (it == next.end()) throw InputError("mesh: boundary is not closed at node " + at(m.nodes[v]));
+      v = it->second;
+    }
+    if (v != e[0]) throw InputError("mesh: boundary does not close into simple loops near " + at(m.nodes[v]));
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+double polygon_area(const Mesh& m, const std::vector<int>& loop) {
+  double a = 0;
+  const Vec2 o = m.nodes[loop[0]];
+  for (size_t i = 0; i < loop.size(); ++i) {
+    Vec2 p = m.nodes[loop[i]] - o, q = m.nodes[loop[(i + 1) % loop.size()]] - o;
+    a += p.x() * q.y() - p.y() * q.x();
+  }
+  return 0.5 * a;
+}
+
+std::vector<char> boundary_node_flags(const Mesh& m) {
+  std::vector<char> f(m.nodes.size(), 0);
+  std::unordered_map<std::uint64_t, int> count;
+  count.reserve(4 * m.cells.size());
+  for (const auto& c : m.cells)
+    for (int i = 0; i < c.nv; ++i) ++count[ukey(c.v[i], c.v[(i + 1) % c.nv])];
+  for (const auto& c : m.cells)
+    for (int i = 0; i < c.nv; ++i) {
+      int a = c.v[i], b = c.v[(i + 1) % c.nv];
+      if (count[ukey(a, b)] == 1) f[a] = f[b] = 1;
+    }
+  for (const auto& e : m.boundary) f[e.v[0]] = f[e.v[1]] = 1;
+  return f;
+}
+
+int orient_counter_clockwise(Mesh& m) {
+  int n = 0;
+  for (int c = 0; c < m.num_cells(); ++c)
+    if (cell_area(m, c) < 0) {
+      Cell& cell = m.cells[c];
+      std::reverse(cell.v.begin(), cell.v.begin() + cell.nv);
+      ++n;
+    }
+  return n;
+}
+
+bool make_triangle_count_even(Mesh& m) {
+  if (m.cells.size() % 2 == 0) return false;
+  auto fe = free_edges(m);
+  if (fe.empty()) throw InputError("mesh: a triangulation without boundary edges cannot be recombined");
+  // longest free edge; ties broken by order (deterministic)
+  size_t best = 0;
+  double lbest = -1;
+  for (size_t i = 0; i < fe.size(); ++i) {
+    double l = (m.nodes[fe[i][1]] - m.nodes[fe[i][0]]).squaredNorm();
+    if (l > lbest) lbest = l, best = i;
+  }
+  const int a = fe[best][0], b = fe[best][1];
+  int cell = -1, local = -1;
+  for (int c = 0; c < m.num_cells() && cell < 0; ++c)
+    for (int i = 0; i < m.cells[c].nv; ++i)
+      if (m.cells[c].v[i] == a && m.cells[c].v[(i + 1) % m.cells[c].nv] == b) {
+        cell = c, local = i;
+        break;
+      }
+  Cell& t = m.cells[cell];
+  const int opp = t.v[(local + 2) % 3];
+  const int mid = m.num_nodes();
+  m.nodes.push_back(0.5 * (m.nodes[a] + m.nodes[b]));
+  Cell t1, t2;
+  t1.nv = t2.nv = 3;
+  t1.v = {a, mid, opp, -1};
+  t2.v = {mid, b, opp, -1};
+  m.cells[cell] = t1;
+  m.cells.insert(m.cells.begin() + cell + 1, t2);
+  for (size_t i = 0; i < m.boundary.size(); ++i) {
+    auto& e = m.boundary[i];
+    if ((e.v[0] == a && e.v[1] == b) || (e.v[0] == b && e.v[1] == a)) {
+      BoundaryEdge e2 = e;
+      int s = e.v[0], f = e.v[1];
+      e.v = {s, mid};
+      e2.v = {mid, f};
+      m.boundary.insert(m.boundary.begin() + i + 1, e2);
+      break;
+    }
+  }
+  m.clear_fields();
+  return true;
+}
+
+void check_triangulation(const Mesh& m, const std::string& path) {
+  if (m.cells.empty()) throw InputError(path, "the mesh has no cells");
+  if (m.num_quads() > 0)
+    throw InputError(path, "not a triangulation: " + std::to_string(m.num_quads()) +
+                               " quadrilateral cells (recombine needs triangles only)");
+  for (const auto& p : m.nodes)
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y())) throw InputError(path, "non-finite node coordinate");
+  for (int c = 0; c < m.num_cells(); ++c) {
+    for (int i = 0; i < 3; ++i)
+      if (m.cells[c].v[i] < 0 || m.cells[c].v[i] >= m.num_nodes())
+        throw InputError(path, "cell " + std::to_string(c) + " refers to a missing node");
+    if (!(cell_area(m, c) > 0))
+      throw InputError(path, "triangle " + std::to_string(c) + " at " + at(cell_centroid(m, c)) +
+                                 " is inverted or degenerate (area " + std::to_string(cell_area(m, c)) + ")");
+  }
+  std::vector<std::array<int, 2>> fe;
+  try {
+    fe = free_edges(m);
+  } catch (const InputError& e) {
+    throw InputError(path, std::string(e.what()).substr(6));  // strip "mesh: "
+  }
+  std::unordered_map<std::uint64_t, char> isfree;
+  for (const auto& e : fe) isfree[ukey(e[0], e[1])] = 1;
+  for (const auto& e : m.boundary)
+    if (!isfree.count(ukey(e.v[0], e.v[1])))
+      throw InputError(path, "boundary edge between " + at(m.nodes[e.v[0]]) + " and " + at(m.nodes[e.v[1]]) +
+                                 " is not a free edge of the triangulation");
+}
+
+}  // namespace quadapt

@@ -1,0 +1,34 @@
+#pragma once
+// Triangles -> all-quad mesh (thesis §4.6): parity fix, Blossom-Quad (Gmsh), split to all-quad.
+//
+//  1. check_triangulation (counter-clockwise triangles, boundary edges are free edges);
+//  2. if the triangle count is odd, split the boundary triangle with the longest boundary edge
+//     at that edge's midpoint (so that Blossom finds a perfect matching instead of falling back
+//     to greedy matching);
+//  3. blossom_recombine (quad-dominant mesh, orientation/area/boundary checked);
+//  4. split_to_all_quads (each quad -> 4, each remaining triangle -> 3, exact midpoints).
+// The boundary groups (names and tags) are carried through every step.
+#include "mesh/mesh.hpp"
+#include "quad/blossom.hpp"
+#include "quad/quality.hpp"
+
+namespace quadapt {
+
+struct RecombineOptions {
+  BlossomOptions blossom;
+  bool split = true;  ///< false: stop at the quad-dominant mesh (for inspection)
+};
+
+struct RecombineStats {
+  int triangles_in = 0;              ///< triangles of the input
+  bool parity_split = false;         ///< one boundary triangle was split to make the count even
+  BlossomStats blossom;              ///< quads / triangles after Blossom
+  int cells_out = 0;                 ///< cells of the result (all quads when split)
+  QualitySummary quality;            ///< of the result
+};
+
+/// Runs steps 1-4 on `tri` (path is only used in error messages).
+Mesh recombine_to_all_quads(const Mesh& tri, const RecombineOptions& opt = {}, RecombineStats* stats = nullptr,
+                            const std::string& path = "mesh");
+
+}  // namespace quadapt

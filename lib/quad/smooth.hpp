@@ -1,0 +1,48 @@
+#pragma once
+// Angle-based smoothing of Zhou & Shimada (thesis §4.6, ref. [135]: T. Zhou, K. Shimada, "An
+// angle-based approach to two-dimensional mesh smoothing", IMR 2000) with a guard that never
+// lowers the minimum angle and never inverts a cell.
+//
+// For an interior node i with edge-connected neighbours j = 1..n: at each neighbour j the
+// segment (j -> i) splits the angle between the two cells A, B sharing edge (i, j) into
+// alpha_A (corner angle of A at j) and alpha_B (corner angle of B at j). Zhou & Shimada rotate
+// i about j so that the two become equal (triangles and quads alike) or, in a mixed mesh, reach
+// the ideal ratio 60:90 of a triangle and a quad corner:
+//     alpha_A' = (alpha_A + alpha_B) w_A / (w_A + w_B),  w = 60 deg (triangle) or 90 deg (quad),
+//     P_j = x_j + R(s (alpha_A - alpha_A')) (x_i - x_j),   s = +1 if A lies counter-clockwise
+//                                                            of (j -> i), else -1,
+//     x_i_new = (1/n) sum_j P_j.
+// (Only edge neighbours are used: for a quad, the diagonal node's angles are not 45:45 on an
+// anisotropic rectangle, so including them would destroy aligned stretched quads; with edge
+// neighbours a perfect grid of rectangles is a fixed point.)
+//
+// Guard (Gauss-Seidel, nodes in index order): a move is accepted only if every cell around i
+// stays valid (all corner scaled Jacobians > 0) and the minimum corner angle over those cells
+// does not decrease; otherwise the displacement is halved (up to max_halvings times) and
+// retried, else the node is left in place. Since a node only changes the angles of its own
+// cells, the global minimum angle can never decrease and no cell can invert.
+// Boundary nodes (on a free edge or a listed boundary edge) and hanging nodes are fixed.
+#include "mesh/mesh.hpp"
+
+namespace quadapt {
+
+struct SmoothOptions {
+  int sweeps = 3;         ///< Gauss-Seidel passes over the interior nodes
+  int max_halvings = 4;   ///< a rejected move is halved at most this many times
+  double tolerance = 0;   ///< stop early when no node moves more than tolerance * local size
+};
+
+struct SmoothStats {
+  int sweeps = 0;             ///< passes done
+  int interior_nodes = 0;     ///< nodes allowed to move
+  long moves_full = 0;        ///< accepted moves at the full step
+  long moves_reduced = 0;     ///< accepted after halving
+  long moves_rejected = 0;    ///< left in place
+  double min_angle_before = 0, min_angle_after = 0;  ///< degrees, whole mesh
+  double max_displacement = 0;                       ///< largest accepted move (length units)
+};
+
+/// Smooths m in place (conforming triangle, quad or mixed mesh, cells counter-clockwise).
+SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt = {});
+
+}  // namespace quadapt
