@@ -137,6 +137,30 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
     const Cell& c = m.cells[f.cell[0]];
     free_keys.insert(key(c.v[f.local_edge[0]], c.v[(f.local_edge[0] + 1) % c.nv]));
   }
+  // A free edge that overlaps another free edge along one line is an interior interface that
+  // is neither conforming nor 2:1 (e.g. four fine faces along one coarse edge): build_topology
+  // would treat it as outer boundary, silently decoupling the two sides.
+  {
+    std::vector<const Face*> free_faces;
+    for (const Face& f : topo.faces)
+      if (f.is_boundary()) free_faces.push_back(&f);
+    for (size_t i = 0; i < free_faces.size(); ++i) {
+      const Face& fi = *free_faces[i];
+      for (size_t j = i + 1; j < free_faces.size(); ++j) {
+        const Face& fj = *free_faces[j];
+        const Vec2 d = fi.b - fi.a;
+        const double tol = 1e-9 * fi.length;
+        auto off = [&](const Vec2& q) { return std::abs(d.x() * (q - fi.a).y() - d.y() * (q - fi.a).x()) / fi.length; };
+        if (off(fj.a) > tol || off(fj.b) > tol) continue;
+        double s0 = (fj.a - fi.a).dot(d) / d.squaredNorm(), s1 = (fj.b - fi.a).dot(d) / d.squaredNorm();
+        double lo = std::max(0.0, std::min(s0, s1)), hi = std::min(1.0, std::max(s0, s1));
+        if (hi - lo > 1e-9)
+          fail("cells " + std::to_string(fi.cell[0] + 1) + " and " + std::to_string(fj.cell[0] + 1) +
+               " meet along " + point(0.5 * (fi.a + fi.b)) +
+               " without sharing an edge: only conforming or 2:1 (one hanging node) interfaces are supported");
+      }
+    }
+  }
   for (const Cell& c : m.cells)
     for (int k = 0; k < c.nv; ++k) cell_keys.insert(key(c.v[k], c.v[(k + 1) % c.nv]));
   for (const BoundaryEdge& be : m.boundary) {

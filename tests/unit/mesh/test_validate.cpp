@@ -117,3 +117,16 @@ TEST_CASE("PHiLiP's frame files validate as quad meshes with Vinv") {
     CHECK(problem(read_msh(dir + f), o) == "");
   }
 }
+
+TEST_CASE("an interface worse than 2:1 is refused, not taken as outer boundary") {
+  // Coarse cell [0,1]^2 beside four fine cells of height 1/4 along x = 1 (4:1).
+  Mesh m;
+  m.nodes = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int k = 1; k <= 3; ++k) m.nodes.push_back({1, 0.25 * k});   // 4, 5, 6
+  for (int k = 0; k <= 4; ++k) m.nodes.push_back({1.25, 0.25 * k}); // 7..11
+  m.cells = {Cell{{0, 1, 2, 3}, 4}, Cell{{1, 7, 8, 4}, 4}, Cell{{4, 8, 9, 5}, 4},
+             Cell{{5, 9, 10, 6}, 4}, Cell{{6, 10, 11, 2}, 4}};
+  const std::string p = problem(m);
+  CHECK(has(p, "m.msh: "));
+  CHECK(has(p, "without sharing an edge"));
+}
