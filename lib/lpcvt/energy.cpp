@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -38,6 +39,8 @@ inline void power(double F, double p, double& f, double& g) {
     g = p * am * (F < 0 ? -1 : 1);
   }
 }
+
+int g_min_parallel_sites = 2000;
 
 struct Contribution {
   int site;
@@ -139,7 +142,10 @@ EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, doubl
   std::vector<double> eq(nq, 0.0);
   std::vector<std::vector<Contribution>> contrib(gradient ? nq : 0);
   std::vector<long> npieces(nq, 0);
-#pragma omp parallel
+  // Parallel only when there is enough work: small problems lose more to thread start-up and
+  // (on a loaded machine) to spinning threads than they gain.
+  const bool parallel = static_cast<int>(x.size()) >= g_min_parallel_sites && nq >= 8;
+#pragma omp parallel if (parallel)
   {
     RvdWorkspace ws;
     std::vector<RvdPiece> pcs;
@@ -166,6 +172,8 @@ EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, doubl
   }
   return r;
 }
+
+void set_min_parallel_sites(int n) { g_min_parallel_sites = std::max(0, n); }
 
 EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, double p,
                        bool gradient) {

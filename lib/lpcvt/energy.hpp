@@ -43,6 +43,10 @@ EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, doubl
 EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, double p,
                        bool gradient = true);
 
+/// OpenMP is used from this many sites on (default 2000; smaller problems lose more to thread
+/// start-up than they gain). Tests set 0 to exercise the parallel path.
+void set_min_parallel_sites(int n);
+
 /// Energy of one piece (tests): integral over the piece of |M (y - x_site)|_p^p.
 double piece_energy(const RvdPiece& piece, const Background& bg, const Vec2& x_site, double p);
 

@@ -1,0 +1,78 @@
+#pragma once
+// The L_p-CVT mesh generator (thesis Algorithm 3): boundary equidistribution, interior seeding,
+// cycles of { L-BFGS minimisation of the L_p-CVT energy (Algorithm 1); edge split/merge
+// (Algorithm 2) } until fewer than `change_tol` of the edges change in two consecutive cycles
+// (the tolerance ramps up to `change_tol_max` after `ramp_after` cycles when split/merge
+// oscillates, §4.5), then the constrained Delaunay triangulation (§4.6).
+//
+// Point count. One point per unit metric area: the requested number of sites is
+//   N_req = A_M + P_M / 2 + 1,  A_M = integral |det M_eff| (Background::metric_area),
+//   P_M = metric length of the boundary,
+// (a square lattice of spacing 1 on an a x a metric square has (a+1)^2 = A + P/2 + 1 sites),
+// and about 2 A_M triangles.
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "lpcvt/background.hpp"
+#include "lpcvt/boundary.hpp"
+#include "lpcvt/optimize.hpp"
+#include "lpcvt/seed.hpp"
+#include "lpcvt/split_merge.hpp"
+#include "mesh/mesh.hpp"
+
+namespace quadapt::lpcvt {
+
+struct LpcvtOptions {
+  double p = 6;                 ///< L_p exponent of the energy (eq. 4.1) and of eq. 4.12
+  unsigned seed = 1;            ///< random seed of the interior points
+  int initial_points = -1;      ///< interior points to start from; -1: the requested count
+  SeedMode seed_mode = SeedMode::Density;
+  int max_cycles = 30;          ///< split/merge cycles
+  LbfgsOptions lbfgs;           ///< per-cycle minimisation
+  SplitMergeOptions split;      ///< lmin, lmax (q is set to p)
+  double change_tol = 0.02;     ///< fraction of edges split or merged counted as "no change"
+  double change_tol_max = 0.05; ///< ramp limit
+  int ramp_after = 10;          ///< cycles after which the tolerance ramps (+0.5% per cycle)
+  double corner_angle = 30;     ///< degrees: boundary corners split curves
+  int boundary_samples = 8;     ///< samples per background edge (analytic metrics)
+  bool polish = true;           ///< minimise once more after the last split/merge if it changed points
+};
+
+struct CycleRecord {
+  int cycle = 0;
+  int iterations = 0, evaluations = 0;
+  double energy = 0, grad_norm = 0;
+  bool converged = false;       ///< of the minimisation
+  std::string stop;             ///< of the minimisation
+  int points = 0;               ///< sites after the split/merge
+  SplitMergeResult split;       ///< zero for the polish step
+  double tolerance = 0;         ///< change tolerance used for this cycle
+  bool polish = false;
+};
+
+struct LpcvtResult {
+  std::vector<Vec2> initial_sites;  ///< boundary sites then the seeds
+  std::vector<Vec2> sites;          ///< final sites (boundary first)
+  int nfixed = 0;                   ///< number of boundary sites
+  BoundaryPoints boundary;
+  std::vector<IterationRecord> history;
+  std::vector<CycleRecord> cycles;
+  int iterations = 0, evaluations = 0;
+  double energy = 0, grad_norm = 0;
+  bool converged = false;          ///< outer loop converged and the last minimisation converged
+  std::string stop;                ///< why it stopped, in words
+  double requested_points = 0, metric_area = 0, boundary_metric_length = 0;
+  Mesh mesh;                       ///< the final triangulation
+};
+
+/// Runs Algorithm 3 on the background. `log` receives progress lines (may be empty).
+LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
+                      const std::function<void(const std::string&)>& log = {});
+
+/// Report figures: points, requested_points, triangles, iterations, evaluations, cycles,
+/// energy, grad_norm, converged, stop, and the convergence history (per iteration and per cycle).
+nlohmann::json report_json(const LpcvtResult& r);
+
+}  // namespace quadapt::lpcvt

@@ -1,0 +1,134 @@
+#include "lpcvt/quality.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "lpcvt/delaunay.hpp"
+#include "lpcvt/rvd.hpp"
+
+namespace quadapt::lpcvt {
+
+namespace {
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+double angle_deg(const Vec2& a, const Vec2& b) {
+  double c = a.dot(b) / (a.norm() * b.norm());
+  return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / M_PI;
+}
+}  // namespace
+
+AngleStats triangle_angles(const Background& bg, const Mesh& tri, bool metric) {
+  AngleStats s;
+  std::vector<double> largest, smallest;
+  int hint = -1;
+  for (int k = 0; k < tri.num_cells(); ++k) {
+    const Cell& c = tri.cells[k];
+    if (c.nv != 3) continue;
+    Vec2 p[3];
+    for (int i = 0; i < 3; ++i) p[i] = tri.nodes[c.v[i]];
+    Mat2 M = Mat2::Identity();
+    if (metric) {
+      Vec2 z = (p[0] + p[1] + p[2]) / 3;
+      int q = bg.locate(z, hint);
+      if (q < 0) continue;
+      hint = q;
+      M = bg.metric(q, z);
+    }
+    double a[3];
+    for (int i = 0; i < 3; ++i)
+      a[i] = angle_deg(M * (p[(i + 1) % 3] - p[i]), M * (p[(i + 2) % 3] - p[i]));
+    largest.push_back(std::max({a[0], a[1], a[2]}));
+    smallest.push_back(std::min({a[0], a[1], a[2]}));
+  }
+  s.triangles = static_cast<int>(largest.size());
+  if (!s.triangles) return s;
+  s.median_largest = median(largest);
+  s.median_smallest = median(smallest);
+  int within = 0;
+  for (double a : largest) {
+    s.mean_largest += a / s.triangles;
+    if (a >= 80 && a <= 100) ++within;
+  }
+  s.frac_largest_80_100 = double(within) / s.triangles;
+  return s;
+}
+
+AlignmentStats voronoi_alignment(const Background& bg, const std::vector<Vec2>& sites, int from,
+                                 bool principal) {
+  AlignmentStats s;
+  RestrictedVoronoi rvd(bg, sites);
+  double wsum = 0, dsum = 0, within = 0;
+  for (const RvdPiece& pc : rvd.all_pieces()) {
+    if (pc.site < from) continue;
+    const int m = static_cast<int>(pc.v.size());
+    for (int k = 0; k < m; ++k) {
+      if (pc.label[k] < 0) continue;
+      Vec2 u = pc.v[(k + 1) % m] - pc.v[k];
+      Vec2 mid = 0.5 * (pc.v[(k + 1) % m] + pc.v[k]);
+      const Mat2 M = bg.metric(pc.cell, mid);
+      Vec2 w = M * u;
+      double len = w.norm();
+      if (len <= 0) continue;
+      if (principal) {  // u in the eigenbasis of M^T M
+        Eigen::SelfAdjointEigenSolver<Mat2> es(M.transpose() * M);
+        w = es.eigenvectors().transpose() * u;
+      }
+      double a = std::atan2(std::abs(w.y()), std::abs(w.x())) * 180.0 / M_PI;
+      double dev = std::min(a, 90 - a);
+      wsum += len;
+      dsum += len * dev;
+      if (dev <= 10) within += len;
+      ++s.edges;
+    }
+  }
+  if (wsum > 0) {
+    s.mean_deviation = dsum / wsum;
+    s.frac_within_10 = within / wsum;
+  }
+  return s;
+}
+
+std::vector<int> valence_histogram(const std::vector<Vec2>& sites, int from) {
+  DelaunayGraph dt(sites);
+  std::vector<int> h;
+  for (int i = from; i < dt.num_sites(); ++i) {
+    int d = dt.degree(i);
+    if (static_cast<int>(h.size()) <= d) h.resize(d + 1, 0);
+    ++h[d];
+  }
+  return h;
+}
+
+nlohmann::json voronoi_json(const Background& bg, const std::vector<Vec2>& sites, int nfixed) {
+  using nlohmann::json;
+  json j;
+  json s = json::array();
+  for (const Vec2& p : sites) s.push_back({p.x(), p.y()});
+  j["sites"] = s;
+  j["nfixed"] = nfixed;
+  json e = json::array();
+  RestrictedVoronoi rvd(bg, sites);
+  for (const RvdPiece& pc : rvd.all_pieces()) {
+    const int m = static_cast<int>(pc.v.size());
+    for (int k = 0; k < m; ++k) {
+      if (pc.label[k] < 0 || pc.label[k] < pc.site) continue;
+      const Vec2 &a = pc.v[k], &b = pc.v[(k + 1) % m];
+      if ((a - b).norm() == 0) continue;
+      e.push_back({a.x(), a.y(), b.x(), b.y()});
+    }
+  }
+  j["edges"] = e;
+  json bd = json::array();
+  const Mesh& m = bg.mesh();
+  for (const BoundaryEdge& be : m.boundary) {
+    const Vec2 &a = m.nodes[be.v[0]], &b = m.nodes[be.v[1]];
+    bd.push_back({a.x(), a.y(), b.x(), b.y()});
+  }
+  j["boundary"] = bd;
+  return j;
+}
+
+}  // namespace quadapt::lpcvt

@@ -1,0 +1,78 @@
+#!/usr/bin/python3
+"""Writes a test frame file like PHiLiP's (MSH 4.1 ASCII, no $Entities, no boundary lines):
+an n x n quad grid on [x0,x1]x[y0,y1] (optionally with the top-right quarter removed: an
+L-shape) and per cell $ElementData "Vinv" = V^-1, V = R(theta) diag(h1, h2), 9 components.
+
+  lpcvt_frame.py OUT.msh --n 8 --h1 0.05 --h2 0.05 --theta 0 [--box x0 x1 y0 y1] [--lshape]
+  --kind symmetric: M = R diag(1/h1, 1/h2) R^T (symmetric, same M^T M).
+  --kind saddle: M = eq. 6.1 sampled at cell centres (times --factor).
+  --corrupt nan|singular|none: damage cell 0's frame (bad-input tests).
+"""
+import argparse
+import math
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("out")
+    ap.add_argument("--n", type=int, default=8)
+    ap.add_argument("--h1", type=float, default=0.05)
+    ap.add_argument("--h2", type=float, default=0.05)
+    ap.add_argument("--theta", type=float, default=0.0)
+    ap.add_argument("--box", type=float, nargs=4, default=[0, 1, 0, 1])
+    ap.add_argument("--lshape", action="store_true")
+    ap.add_argument("--kind", choices=["constant", "symmetric", "saddle"], default="constant")
+    ap.add_argument("--factor", type=float, default=1.0)
+    ap.add_argument("--corrupt", choices=["none", "nan", "singular", "nofield"], default="none")
+    a = ap.parse_args()
+    n = a.n
+    x0, x1, y0, y1 = a.box
+    nodes = [(x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * j / n) for j in range(n + 1) for i in range(n + 1)]
+    cells = []
+    for j in range(n):
+        for i in range(n):
+            if a.lshape and i >= n // 2 and j >= n // 2:
+                continue
+            k = j * (n + 1) + i
+            cells.append((k, k + 1, k + n + 2, k + n + 1))
+    c, s = math.cos(a.theta), math.sin(a.theta)
+    frames = []
+    for q in cells:
+        if a.kind == "constant":
+            # V^-1 = diag(1/h1, 1/h2) R(-theta)
+            m = [c / a.h1, s / a.h1, -s / a.h2, c / a.h2]
+        elif a.kind == "symmetric":
+            # R diag(1/h1, 1/h2) R^T: same Riemannian metric, symmetric (like eq. 6.1)
+            p1, p2 = 1 / a.h1, 1 / a.h2
+            m = [c * c * p1 + s * s * p2, c * s * (p1 - p2), c * s * (p1 - p2), s * s * p1 + c * c * p2]
+        else:
+            x = sum(nodes[v][0] for v in q) / 4
+            y = sum(nodes[v][1] for v in q) / 4
+            m = [1 + 4 * x * x, -4 * x * y, -4 * x * y, 1 + 4 * y * y]
+            m = [a.factor * t for t in m]
+        frames.append(m)
+    if a.corrupt == "nan":
+        frames[0] = [float("nan")] * 4
+    elif a.corrupt == "singular":
+        frames[0] = [1.0, 2.0, 2.0, 4.0]
+    with open(a.out, "w") as f:
+        f.write("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n")
+        f.write(f"$Nodes\n1 {len(nodes)} 1 {len(nodes)}\n2 1 0 {len(nodes)}\n")
+        for k in range(len(nodes)):
+            f.write(f"{k + 1}\n")
+        for p in nodes:
+            f.write(f"{p[0]!r} {p[1]!r} 0\n")
+        f.write("$EndNodes\n")
+        f.write(f"$Elements\n1 {len(cells)} 1 {len(cells)}\n2 1 3 {len(cells)}\n")
+        for k, q in enumerate(cells):
+            f.write(f"{k + 1} {q[0] + 1} {q[1] + 1} {q[2] + 1} {q[3] + 1}\n")
+        f.write("$EndElements\n")
+        if a.corrupt != "nofield":
+            f.write(f'$ElementData\n1\n"Vinv"\n1\n0\n3\n0\n9\n{len(cells)}\n')
+            for k, m in enumerate(frames):
+                f.write(f"{k + 1} {m[0]!r} {m[1]!r} 0 {m[2]!r} {m[3]!r} 0 0 0 1\n")
+            f.write("$EndElementData\n")
+
+
+if __name__ == "__main__":
+    main()

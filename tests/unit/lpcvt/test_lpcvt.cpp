@@ -1,0 +1,194 @@
+// The optimiser loop (Algorithms 1-3) and the final triangulation: monotone energy, lattices on
+// constant metrics, the thesis's §6.1 saddle experiment, non-convex domains, early stops,
+// determinism.
+#include <doctest/doctest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <string>
+
+#include "helpers.hpp"
+#include "lpcvt/energy.hpp"
+#include "lpcvt/lpcvt.hpp"
+#include "lpcvt/quality.hpp"
+#include "lpcvt/triangulate.hpp"
+
+using namespace lpcvt_test;
+
+namespace {
+
+void check_valid(const LpcvtResult& r, const Background& bg) {
+  TriangulationCheck c = check_triangulation(r.mesh);
+  INFO(c.summary());
+  CHECK(c.ok());
+  CHECK(c.area == doctest::Approx(bg.area()).epsilon(1e-9));
+  CHECK(c.boundary_edges == static_cast<int>(r.boundary.segments.size()));
+  for (const auto& b : r.mesh.boundary) CHECK(b.group >= 0);
+}
+
+/// Free sites' share of Delaunay valence v.
+double valence_share(const LpcvtResult& r, int v) {
+  auto h = valence_histogram(r.sites, r.nfixed);
+  int tot = 0;
+  for (int k : h) tot += k;
+  return v < static_cast<int>(h.size()) && tot ? double(h[v]) / tot : 0.0;
+}
+
+}  // namespace
+
+TEST_CASE("energy decreases monotonically within every cycle; split/merge settles") {
+  auto f = std::make_shared<SaddleMetric>();
+  Background bg = Background::analytic(saddle_square(8), f, 1.0);
+  LpcvtOptions o;
+  o.initial_points = 20;
+  o.seed_mode = SeedMode::Uniform;
+  o.split.lmin = 0;
+  o.split.lmax = std::sqrt(2.0);
+  o.max_cycles = 4;
+  LpcvtResult r = run_lpcvt(bg, o);
+  REQUIRE(r.history.size() > 10);
+  int violations = 0;
+  for (size_t k = 1; k < r.history.size(); ++k) {
+    const auto &a = r.history[k - 1], &b = r.history[k];
+    if (a.cycle == b.cycle && b.energy > a.energy * (1 + 1e-14)) ++violations;
+  }
+  CHECK(violations == 0);
+  // every cycle starts at iteration 0 and the energy drops over the cycle
+  for (const auto& c : r.cycles) CHECK(c.iterations > 0);
+  CHECK(r.cycles.front().split.splits > 0);  // 20 points are far too few
+  check_valid(r, bg);
+}
+
+TEST_CASE("constant isotropic metric: p = 6 gives a square lattice, p = 2 a hexagonal one") {
+  Mesh m = quadapt::make_structured_quads(3, 3);
+  set_frame(m, 0.025, 0.025, 0);  // with scale 1/4: spacing 0.1, a 10 x 10 lattice
+  Background bg = Background::from_frame(m, 0.25, "mem");
+  LpcvtOptions o;
+  LpcvtResult r6 = run_lpcvt(bg, o);
+  check_valid(r6, bg);
+  CHECK(r6.converged);
+  CHECK(r6.sites.size() == doctest::Approx(r6.requested_points).epsilon(0.05));
+  AngleStats a6 = triangle_angles(bg, r6.mesh);
+  AlignmentStats al6 = voronoi_alignment(bg, r6.sites, r6.nfixed);
+  MESSAGE("p=6: " << r6.sites.size() << " points (requested " << r6.requested_points << "), largest angle median "
+                  << a6.median_largest << ", share in [80,100] " << a6.frac_largest_80_100
+                  << ", Voronoi edges off the axes by " << al6.mean_deviation << " deg");
+  CHECK(a6.median_largest > 83);
+  CHECK(a6.frac_largest_80_100 > 0.6);
+  CHECK(al6.mean_deviation < 8);
+  o.p = 2;
+  LpcvtResult r2 = run_lpcvt(bg, o);
+  check_valid(r2, bg);
+  AngleStats a2 = triangle_angles(bg, r2.mesh);
+  double v6 = valence_share(r2, 6);
+  MESSAGE("p=2: valence-6 share " << v6 << ", largest angle median " << a2.median_largest
+                                  << ", smallest angle median " << a2.median_smallest);
+  CHECK(v6 > 0.7);
+  CHECK(a2.median_largest < 75);   // near-equilateral
+  CHECK(a2.median_smallest > 50);
+}
+
+TEST_CASE("anisotropic frame at 30 degrees: cells aligned with the frame") {
+  Mesh m = quadapt::make_structured_quads(3, 3);
+  set_frame(m, 0.04, 0.015, M_PI / 6);
+  Background bg = Background::from_frame(m, 0.25, "mem");
+  LpcvtOptions o;
+  LpcvtResult r = run_lpcvt(bg, o);
+  check_valid(r, bg);
+  AngleStats a = triangle_angles(bg, r.mesh);
+  AlignmentStats al = voronoi_alignment(bg, r.sites, r.nfixed);
+  MESSAGE("30 deg, 8:3 frame: " << r.sites.size() << " points (requested " << r.requested_points
+                                << "), largest metric angle median " << a.median_largest << ", share in [80,100] "
+                                << a.frac_largest_80_100 << ", alignment " << al.mean_deviation << " deg");
+  CHECK(r.sites.size() == doctest::Approx(r.requested_points).epsilon(0.1));
+  CHECK(al.mean_deviation < 10);
+  CHECK(a.median_largest > 75);
+}
+
+TEST_CASE("thesis §6.1: saddle metric (eq. 6.1), continuous and on a 16x16 background") {
+  auto f = std::make_shared<SaddleMetric>();
+  for (int sampled = 0; sampled < 2; ++sampled) {
+    Mesh m = saddle_square(16);
+    Background bg = sampled ? Background::sampled(m, *f, 1.0) : Background::analytic(m, f, 1.0);
+    LpcvtOptions o;
+    o.initial_points = 20;
+    o.seed_mode = SeedMode::Uniform;
+    o.split.lmin = 0;
+    o.split.lmax = std::sqrt(2.0);
+    LpcvtResult r = run_lpcvt(bg, o);
+    check_valid(r, bg);
+    AngleStats phys = triangle_angles(bg, r.mesh, false);
+    AlignmentStats pr = voronoi_alignment(bg, r.sites, r.nfixed, true);
+    MESSAGE(std::string(sampled ? "sampled 16x16" : "continuous") << ": " << r.sites.size() << " points, "
+            << r.cycles.size() << " cycles, " << r.iterations << " iterations, converged " << r.converged
+            << "; largest angle median " << phys.median_largest << " deg, share in [80,100] "
+            << phys.frac_largest_80_100 << "; Voronoi edges off the principal directions by " << pr.mean_deviation
+            << " deg");
+    CHECK(r.converged);
+    CHECK(r.cycles.size() <= 8);
+    CHECK(phys.median_largest > 75);
+    CHECK(phys.median_largest < 100);
+    CHECK(pr.mean_deviation < 20);  // random orientations: 22.5
+    // the corners (metric 14.5 x larger) get more points than the centre
+    int corner = 0, centre = 0;
+    for (const Vec2& p : r.sites) {
+      if (std::abs(p.x()) > 0.65 && std::abs(p.y()) > 0.65) ++corner;
+      if (std::abs(p.x()) < 0.65 && std::abs(p.y()) < 0.65) ++centre;
+    }
+    CHECK(corner > 4 * centre);
+  }
+}
+
+TEST_CASE("non-convex domains: L-shape and a square hole are triangulated validly") {
+  for (int kind = 0; kind < 2; ++kind) {
+    Mesh m = kind == 0 ? l_shape() : square_with_hole();
+    set_frame(m, 0.15, 0.15, 0.3);  // about 130 (L) and 360 (hole) points
+    Background bg = Background::from_frame(m, 1.0, "mem");
+    LpcvtOptions o;
+    o.max_cycles = 3;
+    LpcvtResult r = run_lpcvt(bg, o);
+    check_valid(r, bg);
+    for (const Vec2& p : r.sites) CHECK(bg.inside(p));
+    CHECK(r.sites.size() == doctest::Approx(r.requested_points).epsilon(0.1));
+  }
+}
+
+TEST_CASE("an optimiser stopped by the iteration cap still gives a valid mesh and says so") {
+  Mesh m = quadapt::make_structured_quads(2, 2);
+  set_frame(m, 0.1, 0.1, 0);
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  LpcvtOptions o;
+  o.lbfgs.max_iterations = 2;
+  o.max_cycles = 1;
+  LpcvtResult r = run_lpcvt(bg, o);
+  CHECK_FALSE(r.converged);
+  CHECK(r.cycles.front().stop == "iteration cap");
+  CHECK_FALSE(r.cycles.front().converged);
+  check_valid(r, bg);
+  auto j = report_json(r);
+  CHECK(j["converged"] == false);
+  CHECK(j["history"]["energy"].size() == r.history.size());
+}
+
+TEST_CASE("deterministic for a seed, and independent of the thread count") {
+  Mesh m = quadapt::make_structured_quads(4, 4);
+  set_frame(m, 0.06, 0.1, 0.4);  // about 170 points
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  LpcvtOptions o;
+  o.max_cycles = 2;
+  o.lbfgs.max_iterations = 60;
+  set_min_parallel_sites(0);
+  int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+  LpcvtResult a = run_lpcvt(bg, o);
+  omp_set_num_threads(2);
+  LpcvtResult b = run_lpcvt(bg, o);
+  omp_set_num_threads(saved);
+  set_min_parallel_sites(2000);
+  REQUIRE(a.sites.size() == b.sites.size());
+  for (size_t i = 0; i < a.sites.size(); ++i) CHECK(a.sites[i] == b.sites[i]);
+  CHECK(a.energy == b.energy);
+  o.seed = 2;
+  LpcvtResult c = run_lpcvt(bg, o);
+  CHECK(c.initial_sites != a.initial_sites);
+}
