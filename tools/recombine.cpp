@@ -20,15 +20,23 @@ int main(int argc, char** argv) {
             "edge length. Boundary nodes never move; the boundary groups (names and tags) are "
             "carried through. Orientation, area and boundary are checked after Gmsh. Report: "
             "triangles in, quads/triangles after Blossom, cells out, quality (angles, scaled "
-            "Jacobian).");
+            "Jacobian), and whether Gmsh's clean-up failed its checks (fell_back).");
   std::string in, out;
   RecombineOptions opt;
   auto& app = tool.app();
   app.add_option("TRI", in, "Input triangle mesh (.msh) with boundary groups")->required()->check(CLI::ExistingFile);
   app.add_option("-o,--output", out, "Output all-quad mesh (.msh); report beside it as .json")->required();
+  bool pairing = false;
+  app.add_flag("--pairing", pairing,
+               "Use only Blossom's matching: every quad is two input triangles, no node moves or "
+               "disappears (default: Gmsh's topological clean-up and node relocation, checked, with "
+               "the pairing as fall-back)");
   app.add_option("--topology-passes", opt.blossom.optimize_topology,
-                 "Gmsh's topological clean-up passes after recombination (Mesh.RecombineOptimizeTopology; "
-                 "0 = off, keeps exactly one quad per triangle pair)")
+                 "Clean-up: Gmsh's topological optimisation passes (Mesh.RecombineOptimizeTopology)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--relocation-passes", opt.blossom.smoothing,
+                 "Clean-up: Gmsh's node relocation passes after recombination (Mesh.Smoothing)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   bool no_split = false;
@@ -38,7 +46,10 @@ int main(int argc, char** argv) {
     tool.input(in);
     tool.output(out);
     opt.split = !no_split;
+    opt.blossom.gmsh_cleanup = !pairing;
+    tool.option("mode", pairing ? "pairing" : "gmsh-cleanup");
     tool.option("topology_passes", opt.blossom.optimize_topology);
+    tool.option("relocation_passes", opt.blossom.smoothing);
     tool.option("split", opt.split);
     Mesh tri;
     {

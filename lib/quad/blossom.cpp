@@ -3,8 +3,9 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <cstring>
+#include <cstdint>
 #include <map>
 #include <unordered_map>
 
@@ -21,14 +22,16 @@ struct PointKey {
   bool operator<(const PointKey& o) const { return x < o.x || (x == o.x && y < o.y); }
 };
 
-}  // namespace
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-Mesh blossom_recombine(const Mesh& tri, const BlossomOptions& opt, BlossomStats* stats) {
-  if (!tri.all_triangles()) throw InputError("mesh: Blossom recombination needs a triangulation");
-  const auto loops = boundary_loops(tri);
-  if (loops.empty()) throw InputError("mesh: the triangulation has no boundary");
-  const double area_in = total_area(tri);
+// Gmsh's answer: node coordinates and cells (node indices into `nodes`).
+struct GmshAnswer {
+  std::vector<Vec2> nodes;
+  std::vector<Cell> cells;
+};
 
+GmshAnswer run_gmsh(const Mesh& tri, const std::vector<std::vector<int>>& loops, const std::vector<char>& on_boundary,
+                    const BlossomOptions& opt, bool cleanup) {
   // Order loops: the one of largest positive area is the outer loop.
   std::vector<int> order(loops.size());
   for (size_t i = 0; i < loops.size(); ++i) order[i] = static_cast<int>(i);
@@ -36,106 +39,86 @@ Mesh blossom_recombine(const Mesh& tri, const BlossomOptions& opt, BlossomStats*
   for (size_t i = 0; i < loops.size(); ++i) la[i] = polygon_area(tri, loops[i]);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return la[a] > la[b]; });
 
-  std::vector<char> on_boundary(tri.nodes.size(), 0);
-  for (const auto& l : loops)
-    for (int v : l) on_boundary[v] = 1;
-
-  std::vector<std::size_t> out_node_tags;
-  std::vector<double> out_coords, out_param;
+  std::vector<std::size_t> node_tags;
+  std::vector<double> coords, param;
   std::vector<int> etypes;
   std::vector<std::vector<std::size_t>> etags, enodes;
+  GmshSession session;
+  gmsh_call("Blossom-Quad recombination", [&] {
+    gmsh::model::add("quadapt-recombine");
+    gmsh::option::setNumber("Mesh.RecombinationAlgorithm", opt.algorithm);
+    gmsh::option::setNumber("Mesh.RecombineOptimizeTopology", cleanup ? opt.optimize_topology : 0);
+    gmsh::option::setNumber("Mesh.Smoothing", cleanup ? opt.smoothing : 0);
+    gmsh::option::setNumber("Mesh.RecombineAll", 1);
 
-  {
-    GmshSession session;
-    gmsh_call("Blossom-Quad recombination", [&] {
-      gmsh::model::add("quadapt-recombine");
-      gmsh::option::setNumber("Mesh.RecombinationAlgorithm", opt.algorithm);
-      gmsh::option::setNumber("Mesh.RecombineOptimizeTopology", opt.optimize_topology);
-      gmsh::option::setNumber("Mesh.RecombineAll", 1);
-
-      // Geometry: geo points = boundary nodes (tag = node + 1), geo lines = boundary edges.
-      for (size_t v = 0; v < tri.nodes.size(); ++v)
-        if (on_boundary[v]) gmsh::model::geo::addPoint(tri.nodes[v].x(), tri.nodes[v].y(), 0, 0, int(v) + 1);
-      int line_tag = 0;
-      std::vector<int> loop_tags;
-      std::vector<std::array<int, 2>> line_nodes;  // per line tag - 1
-      for (int li : order) {
-        const auto& l = loops[li];
-        std::vector<int> lines;
-        for (size_t i = 0; i < l.size(); ++i) {
-          int a = l[i], b = l[(i + 1) % l.size()];
-          ++line_tag;
-          gmsh::model::geo::addLine(a + 1, b + 1, line_tag);
-          line_nodes.push_back({a, b});
-          lines.push_back(line_tag);
-        }
-        loop_tags.push_back(gmsh::model::geo::addCurveLoop(lines));
+    // Geometry: geo points = boundary nodes (tag = node + 1), geo lines = boundary edges.
+    for (size_t v = 0; v < tri.nodes.size(); ++v)
+      if (on_boundary[v]) gmsh::model::geo::addPoint(tri.nodes[v].x(), tri.nodes[v].y(), 0, 0, int(v) + 1);
+    int line_tag = 0;
+    std::vector<int> loop_tags;
+    std::vector<std::array<int, 2>> line_nodes;  // per line tag - 1
+    for (int li : order) {
+      const auto& l = loops[li];
+      std::vector<int> lines;
+      for (size_t i = 0; i < l.size(); ++i) {
+        int a = l[i], b = l[(i + 1) % l.size()];
+        ++line_tag;
+        gmsh::model::geo::addLine(a + 1, b + 1, line_tag);
+        line_nodes.push_back({a, b});
+        lines.push_back(line_tag);
       }
-      const int surf = gmsh::model::geo::addPlaneSurface(loop_tags);
-      gmsh::model::geo::synchronize();
+      loop_tags.push_back(gmsh::model::geo::addCurveLoop(lines));
+    }
+    const int surf = gmsh::model::geo::addPlaneSurface(loop_tags);
+    gmsh::model::geo::synchronize();
 
-      // Mesh: point nodes first, then line elements, then the surface's nodes and triangles.
-      for (size_t v = 0; v < tri.nodes.size(); ++v)
-        if (on_boundary[v])
-          gmsh::model::mesh::addNodes(0, int(v) + 1, {v + 1}, {tri.nodes[v].x(), tri.nodes[v].y(), 0.0});
-      for (int t = 1; t <= line_tag; ++t) {
-        const auto& ln = line_nodes[t - 1];
-        gmsh::model::mesh::addElementsByType(t, 1, {}, {std::size_t(ln[0]) + 1, std::size_t(ln[1]) + 1});
+    // Mesh: point nodes first, then line elements, then the surface's nodes and triangles.
+    for (size_t v = 0; v < tri.nodes.size(); ++v)
+      if (on_boundary[v])
+        gmsh::model::mesh::addNodes(0, int(v) + 1, {v + 1}, {tri.nodes[v].x(), tri.nodes[v].y(), 0.0});
+    for (int t = 1; t <= line_tag; ++t) {
+      const auto& ln = line_nodes[t - 1];
+      gmsh::model::mesh::addElementsByType(t, 1, {}, {std::size_t(ln[0]) + 1, std::size_t(ln[1]) + 1});
+    }
+    std::vector<std::size_t> inner_tags;
+    std::vector<double> inner_xyz, inner_uv;
+    for (size_t v = 0; v < tri.nodes.size(); ++v)
+      if (!on_boundary[v]) {
+        inner_tags.push_back(v + 1);
+        inner_xyz.insert(inner_xyz.end(), {tri.nodes[v].x(), tri.nodes[v].y(), 0.0});
       }
-      std::vector<std::size_t> inner_tags;
-      std::vector<double> inner_xyz, inner_uv;
-      for (size_t v = 0; v < tri.nodes.size(); ++v)
-        if (!on_boundary[v]) {
-          inner_tags.push_back(v + 1);
-          inner_xyz.insert(inner_xyz.end(), {tri.nodes[v].x(), tri.nodes[v].y(), 0.0});
-        }
-      if (!inner_tags.empty()) {
-        gmsh::model::getParametrization(2, surf, inner_xyz, inner_uv);
-        if (inner_uv.size() != 2 * inner_tags.size()) inner_uv.clear();
-        gmsh::model::mesh::addNodes(2, surf, inner_tags, inner_xyz, inner_uv);
-      }
-      std::vector<std::size_t> tri_nodes;
-      tri_nodes.reserve(3 * tri.cells.size());
-      for (const auto& c : tri.cells)
-        for (int i = 0; i < 3; ++i) tri_nodes.push_back(std::size_t(c.v[i]) + 1);
-      gmsh::model::mesh::addElementsByType(surf, 2, {}, tri_nodes);
+    if (!inner_tags.empty()) {
+      gmsh::model::getParametrization(2, surf, inner_xyz, inner_uv);
+      if (inner_uv.size() != 2 * inner_tags.size()) inner_uv.clear();
+      gmsh::model::mesh::addNodes(2, surf, inner_tags, inner_xyz, inner_uv);
+    }
+    std::vector<std::size_t> tri_nodes;
+    tri_nodes.reserve(3 * tri.cells.size());
+    for (const auto& c : tri.cells)
+      for (int i = 0; i < 3; ++i) tri_nodes.push_back(std::size_t(c.v[i]) + 1);
+    gmsh::model::mesh::addElementsByType(surf, 2, {}, tri_nodes);
 
-      gmsh::model::mesh::recombine();
+    gmsh::model::mesh::recombine();
 
-      gmsh::model::mesh::getNodes(out_node_tags, out_coords, out_param, -1, -1, false, false);
-      gmsh::model::mesh::getElements(etypes, etags, enodes, 2, surf);
-      gmsh::model::remove();
-    });
-  }
+    gmsh::model::mesh::getNodes(node_tags, coords, param, -1, -1, false, false);
+    gmsh::model::mesh::getElements(etypes, etags, enodes, 2, surf);
+    gmsh::model::remove();
+  });
 
-  // Rebuild the mesh. Boundary nodes are matched to the input by exact coordinates.
-  std::map<PointKey, int> boundary_index;
-  for (size_t v = 0; v < tri.nodes.size(); ++v)
-    if (on_boundary[v]) boundary_index[{tri.nodes[v].x(), tri.nodes[v].y()}] = int(v);
+  GmshAnswer ans;
   std::unordered_map<std::size_t, int> tag_to_pos;
-  for (size_t i = 0; i < out_node_tags.size(); ++i) tag_to_pos[out_node_tags[i]] = int(i);
-
-  Mesh out;
-  out.groups = tri.groups;
-  out.domain_name = tri.domain_name;
-  out.domain_tag = tri.domain_tag;
+  for (size_t i = 0; i < node_tags.size(); ++i) tag_to_pos[node_tags[i]] = int(i);
   std::unordered_map<std::size_t, int> tag_to_new;
-  std::vector<int> old_to_new(tri.nodes.size(), -1);
   auto node_of = [&](std::size_t tag) {
     auto it = tag_to_new.find(tag);
     if (it != tag_to_new.end()) return it->second;
     auto p = tag_to_pos.find(tag);
     if (p == tag_to_pos.end()) throw ExternalError("Gmsh recombination returned an element with an unknown node");
-    Vec2 x(out_coords[3 * p->second], out_coords[3 * p->second + 1]);
-    int idx = out.num_nodes();
-    out.nodes.push_back(x);
+    int idx = int(ans.nodes.size());
+    ans.nodes.emplace_back(coords[3 * p->second], coords[3 * p->second + 1]);
     tag_to_new[tag] = idx;
-    auto b = boundary_index.find({x.x(), x.y()});
-    if (b != boundary_index.end()) old_to_new[b->second] = idx;
     return idx;
   };
-  BlossomStats st;
-  st.triangles_in = tri.num_cells();
   for (size_t k = 0; k < etypes.size(); ++k) {
     int nv = etypes[k] == 2 ? 3 : etypes[k] == 3 ? 4 : 0;
     if (nv == 0) throw ExternalError("Gmsh recombination returned an element of type " + std::to_string(etypes[k]));
@@ -143,26 +126,185 @@ Mesh blossom_recombine(const Mesh& tri, const BlossomOptions& opt, BlossomStats*
       Cell c;
       c.nv = nv;
       for (int i = 0; i < nv; ++i) c.v[i] = node_of(enodes[k][nv * e + i]);
-      out.cells.push_back(c);
+      ans.cells.push_back(c);
     }
   }
-  st.reoriented = orient_counter_clockwise(out);
-  st.quads = out.num_quads();
-  st.triangles = out.num_triangles();
+  return ans;
+}
 
-  // Boundary edges: the input's, mapped through the unchanged boundary nodes.
+// Input node of each answer node with exactly the same coordinates, or -1.
+std::vector<int> match_nodes(const Mesh& tri, const std::vector<Vec2>& nodes, const std::vector<char>* only) {
+  std::map<PointKey, int> index;
+  for (size_t v = 0; v < tri.nodes.size(); ++v)
+    if (!only || (*only)[v]) index[{tri.nodes[v].x(), tri.nodes[v].y()}] = int(v);
+  std::vector<int> r(nodes.size(), -1);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    auto it = index.find({nodes[i].x(), nodes[i].y()});
+    if (it != index.end()) r[i] = it->second;
+  }
+  return r;
+}
+
+// Pairing mode: Gmsh's quads as pairs of input triangles.
+Mesh pairing(const Mesh& tri, const GmshAnswer& ans, const BlossomOptions& opt, BlossomStats& st) {
+  const std::vector<int> to_input = match_nodes(tri, ans.nodes, nullptr);
+  auto key3 = [](int a, int b, int c) {
+    std::array<int, 3> s{{a, b, c}};
+    std::sort(s.begin(), s.end());
+    return (static_cast<std::uint64_t>(s[0]) << 42) ^ (static_cast<std::uint64_t>(s[1]) << 21) ^ static_cast<std::uint64_t>(s[2]);
+  };
+  std::unordered_map<std::uint64_t, int> tri_index;
+  tri_index.reserve(2 * tri.cells.size());
+  for (int t = 0; t < tri.num_cells(); ++t) tri_index[key3(tri.cells[t].v[0], tri.cells[t].v[1], tri.cells[t].v[2])] = t;
+  std::vector<int> partner(tri.cells.size(), -1);
+  auto convex_enough = [&](const std::array<int, 4>& q) {
+    for (int i = 0; i < 4; ++i) {
+      const Vec2& p = tri.nodes[q[i]];
+      Vec2 en = tri.nodes[q[(i + 1) % 4]] - p, ep = tri.nodes[q[(i + 3) % 4]] - p;
+      double l = en.norm() * ep.norm();
+      if (!(l > 0) || cross2(en, ep) / l < opt.min_pair_jacobian) return false;
+    }
+    return true;
+  };
+  for (const Cell& c : ans.cells) {
+    if (c.nv != 4) continue;
+    ++st.gmsh_quads;
+    std::array<int, 4> v;
+    bool known = true;
+    for (int i = 0; i < 4; ++i) {
+      v[i] = to_input[c.v[i]];
+      if (v[i] < 0) known = false;
+    }
+    bool used = false;
+    if (known) {
+      for (int d = 0; d < 2 && !used; ++d) {  // diagonal (v[d], v[d+2])
+        auto i1 = tri_index.find(key3(v[d], v[d + 1], v[(d + 2) % 4]));
+        auto i2 = tri_index.find(key3(v[d], v[(d + 2) % 4], v[(d + 3) % 4]));
+        if (i1 == tri_index.end() || i2 == tri_index.end()) continue;
+        const int t1 = i1->second, t2 = i2->second;
+        if (t1 == t2 || partner[t1] >= 0 || partner[t2] >= 0) continue;
+        // quad in the input's counter-clockwise order: t1 = (k, k+1, k+2) with the shared edge
+        // (k+1, k+2) and t2's opposite vertex o: (k, k+1, o, k+2)
+        const Cell& a = tri.cells[t1];
+        const Cell& b = tri.cells[t2];
+        int k = 0;
+        while (k < 3 && (a.v[k] == b.v[0] || a.v[k] == b.v[1] || a.v[k] == b.v[2])) ++k;
+        int o = 0;
+        while (o < 3 && (b.v[o] == a.v[0] || b.v[o] == a.v[1] || b.v[o] == a.v[2])) ++o;
+        if (k == 3 || o == 3) continue;
+        std::array<int, 4> q = {a.v[k], a.v[(k + 1) % 3], b.v[o], a.v[(k + 2) % 3]};
+        if (!convex_enough(q)) continue;
+        partner[t1] = t2;
+        partner[t2] = t1;
+        used = true;
+      }
+    }
+    if (!used) ++st.rejected_pairs;
+  }
+  // Left-over neighbours (Gmsh leaves triangles unmatched when their pair's physical-space
+  // quality is below its threshold, common on anisotropic meshes): pair them greedily, best
+  // corner scaled Jacobian first, when the quad is convex enough.
+  {
+    std::unordered_map<std::uint64_t, std::array<int, 2>> edge_tris;
+    auto ekey = [](int a, int b) {
+      if (a > b) std::swap(a, b);
+      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+    };
+    for (int t = 0; t < tri.num_cells(); ++t)
+      if (partner[t] < 0)
+        for (int i = 0; i < 3; ++i) {
+          auto& e = edge_tris.try_emplace(ekey(tri.cells[t].v[i], tri.cells[t].v[(i + 1) % 3]), std::array<int, 2>{{-1, -1}}).first->second;
+          (e[0] < 0 ? e[0] : e[1]) = t;
+        }
+    struct Cand {
+      double q;
+      int t1, t2;
+    };
+    std::vector<Cand> cands;
+    for (const auto& [k, e] : edge_tris) {
+      if (e[0] < 0 || e[1] < 0) continue;
+      const Cell& a = tri.cells[e[0]];
+      const Cell& b = tri.cells[e[1]];
+      int k1 = 0;
+      while (k1 < 3 && (a.v[k1] == b.v[0] || a.v[k1] == b.v[1] || a.v[k1] == b.v[2])) ++k1;
+      int o = 0;
+      while (o < 3 && (b.v[o] == a.v[0] || b.v[o] == a.v[1] || b.v[o] == a.v[2])) ++o;
+      if (k1 == 3 || o == 3) continue;
+      std::array<int, 4> q = {a.v[k1], a.v[(k1 + 1) % 3], b.v[o], a.v[(k1 + 2) % 3]};
+      if (!convex_enough(q)) continue;
+      double qmin = 1;
+      for (int i = 0; i < 4; ++i) {
+        const Vec2& p = tri.nodes[q[i]];
+        Vec2 en = tri.nodes[q[(i + 1) % 4]] - p, ep = tri.nodes[q[(i + 3) % 4]] - p;
+        qmin = std::min(qmin, cross2(en, ep) / (en.norm() * ep.norm()));
+      }
+      cands.push_back({qmin, std::min(e[0], e[1]), std::max(e[0], e[1])});
+    }
+    std::sort(cands.begin(), cands.end(), [](const Cand& x, const Cand& y) {
+      return x.q > y.q || (x.q == y.q && (x.t1 < y.t1 || (x.t1 == y.t1 && x.t2 < y.t2)));
+    });
+    for (const auto& c : cands)
+      if (partner[c.t1] < 0 && partner[c.t2] < 0) {
+        partner[c.t1] = c.t2;
+        partner[c.t2] = c.t1;
+        ++st.greedy_pairs;
+      }
+  }
+  Mesh out;
+  out.nodes = tri.nodes;
+  out.groups = tri.groups;
+  out.boundary = tri.boundary;
+  out.domain_name = tri.domain_name;
+  out.domain_tag = tri.domain_tag;
+  for (int t = 0; t < tri.num_cells(); ++t) {
+    const int p = partner[t];
+    if (p < 0) {
+      out.cells.push_back(tri.cells[t]);
+      continue;
+    }
+    if (p < t) continue;  // emitted with its partner
+    const Cell& a = tri.cells[t];
+    const Cell& b = tri.cells[p];
+    int k = 0;
+    while (a.v[k] == b.v[0] || a.v[k] == b.v[1] || a.v[k] == b.v[2]) ++k;
+    int o = 0;
+    while (b.v[o] == a.v[0] || b.v[o] == a.v[1] || b.v[o] == a.v[2]) ++o;
+    Cell q;
+    q.nv = 4;
+    q.v = {a.v[k], a.v[(k + 1) % 3], b.v[o], a.v[(k + 2) % 3]};
+    out.cells.push_back(q);
+  }
+  return out;
+}
+
+// Clean-up mode: Gmsh's mesh as it is, checked. Throws ExternalError when a check fails.
+Mesh take_cleanup(const Mesh& tri, const GmshAnswer& ans, const std::vector<char>& on_boundary,
+                  const std::vector<std::vector<int>>& loops, BlossomStats& st) {
+  Mesh out;
+  out.nodes = ans.nodes;
+  out.cells = ans.cells;
+  out.groups = tri.groups;
+  out.domain_name = tri.domain_name;
+  out.domain_tag = tri.domain_tag;
+  for (const Cell& c : ans.cells) st.gmsh_quads += c.nv == 4 ? 1 : 0;
+  const std::vector<int> to_input = match_nodes(tri, ans.nodes, &on_boundary);
+  std::vector<int> old_to_new(tri.nodes.size(), -1);
+  for (size_t i = 0; i < to_input.size(); ++i)
+    if (to_input[i] >= 0) old_to_new[to_input[i]] = int(i);
+  st.reoriented = orient_counter_clockwise(out);
   for (const auto& e : tri.boundary) {
     int a = old_to_new[e.v[0]], b = old_to_new[e.v[1]];
     if (a < 0 || b < 0) throw ExternalError("Gmsh recombination moved or removed a boundary node");
     out.boundary.push_back({{a, b}, e.group});
   }
-
-  // Checks: area (no overlap), boundary preserved, nothing inverted or degenerate.
+  const double area_in = total_area(tri);
   double area_abs = 0;
   for (int c = 0; c < out.num_cells(); ++c) area_abs += std::abs(cell_area(out, c));
   if (std::abs(area_abs - area_in) > 1e-9 * std::abs(area_in))
     throw ExternalError("Gmsh recombination produced overlapping or missing elements (area " +
-                        std::to_string(area_abs) + " instead of " + std::to_string(area_in) + ")");
+                        std::to_string(area_abs) + " instead of " + std::to_string(area_in) + "; " +
+                        std::to_string(st.reoriented) + " of " + std::to_string(out.num_cells()) +
+                        " cells came back clockwise)");
   std::vector<std::array<int, 2>> fe;
   try {
     fe = free_edges(out);
@@ -172,17 +314,52 @@ Mesh blossom_recombine(const Mesh& tri, const BlossomOptions& opt, BlossomStats*
   size_t nfree_in = 0;
   for (const auto& l : loops) nfree_in += l.size();
   if (fe.size() != nfree_in)
-    throw ExternalError("Gmsh recombination changed the boundary (" + std::to_string(fe.size()) + " free edges instead of " +
-                        std::to_string(nfree_in) + ")");
+    throw ExternalError("Gmsh recombination changed the boundary (" + std::to_string(fe.size()) +
+                        " free edges instead of " + std::to_string(nfree_in) + ")");
   for (int c = 0; c < out.num_cells(); ++c) {
     const Cell& cell = out.cells[c];
     for (int i = 0; i < cell.nv; ++i) {
       Vec2 p = out.nodes[cell.v[i]];
       Vec2 en = out.nodes[cell.v[(i + 1) % cell.nv]] - p, ep = out.nodes[cell.v[(i + cell.nv - 1) % cell.nv]] - p;
-      if (!(en.x() * ep.y() - en.y() * ep.x() > 0))
+      if (!(cross2(en, ep) > 0))
         throw ExternalError("Gmsh recombination produced an inverted or degenerate cell " + std::to_string(c));
     }
   }
+  return out;
+}
+
+}  // namespace
+
+Mesh blossom_recombine(const Mesh& tri, const BlossomOptions& opt, BlossomStats* stats) {
+  if (!tri.all_triangles()) throw InputError("mesh: Blossom recombination needs a triangulation");
+  const auto loops = boundary_loops(tri);
+  if (loops.empty()) throw InputError("mesh: the triangulation has no boundary");
+  std::vector<char> on_boundary(tri.nodes.size(), 0);
+  for (const auto& l : loops)
+    for (int v : l) on_boundary[v] = 1;
+
+  BlossomStats st;
+  st.triangles_in = tri.num_cells();
+  Mesh out;
+  bool done = false;
+  if (opt.gmsh_cleanup) {
+    try {
+      GmshAnswer ans = run_gmsh(tri, loops, on_boundary, opt, true);
+      out = take_cleanup(tri, ans, on_boundary, loops, st);
+      done = true;
+    } catch (const ExternalError& e) {
+      st = BlossomStats();
+      st.triangles_in = tri.num_cells();
+      st.fell_back = true;
+      st.fallback_reason = e.what();
+    }
+  }
+  if (!done) {
+    GmshAnswer ans = run_gmsh(tri, loops, on_boundary, opt, false);
+    out = pairing(tri, ans, opt, st);
+  }
+  st.quads = out.num_quads();
+  st.triangles = out.num_triangles();
   if (stats) *stats = st;
   return out;
 }

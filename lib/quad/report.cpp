@@ -31,7 +31,12 @@ nlohmann::json to_json(const RecombineStats& s) {
            {{"triangles_in", s.blossom.triangles_in},
             {"quads", s.blossom.quads},
             {"triangles", s.blossom.triangles},
-            {"reoriented", s.blossom.reoriented}}},
+            {"gmsh_quads", s.blossom.gmsh_quads},
+            {"rejected_pairs", s.blossom.rejected_pairs},
+            {"greedy_pairs", s.blossom.greedy_pairs},
+            {"reoriented", s.blossom.reoriented},
+            {"fell_back", s.blossom.fell_back},
+            {"fallback_reason", s.blossom.fallback_reason}}},
           {"cells", s.cells_out},
           {"quality", to_json(s.quality)}};
 }
