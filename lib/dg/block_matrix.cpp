@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <type_traits>
 #include <stdexcept>
 
 #include "core/error.hpp"
@@ -11,6 +12,21 @@ namespace quadapt {
 namespace {
 using MapM = Eigen::Map<Eigen::MatrixXd>;
 using CMapM = Eigen::Map<const Eigen::MatrixXd>;
+
+/// Calls f(std::integral_constant<int, NB>) for the DG block sizes (p+1)^2, p = 1..6, so that the
+/// hot block kernels use fixed-size Eigen types; other sizes get Eigen::Dynamic.
+template <class F>
+void dispatch_block_size(int nb, F&& f) {
+  switch (nb) {
+    case 4: f(std::integral_constant<int, 4>()); break;
+    case 9: f(std::integral_constant<int, 9>()); break;
+    case 16: f(std::integral_constant<int, 16>()); break;
+    case 25: f(std::integral_constant<int, 25>()); break;
+    case 36: f(std::integral_constant<int, 36>()); break;
+    case 49: f(std::integral_constant<int, 49>()); break;
+    default: f(std::integral_constant<int, Eigen::Dynamic>()); break;
+  }
+}
 }  // namespace
 
 BlockSparseMatrix::BlockSparseMatrix(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& A, int nb) {
@@ -71,28 +87,111 @@ BlockSparseMatrix::BlockSparseMatrix(const Eigen::SparseMatrix<double, Eigen::Co
   }
 }
 
+BlockSparseMatrix::BlockSparseMatrix(int nb, std::vector<long long> row_start, std::vector<int> cols)
+    : nb_(nb), nbr_(static_cast<int>(row_start.size()) - 1), row_start_(std::move(row_start)), cols_(std::move(cols)) {
+  values_.assign(cols_.size() * static_cast<size_t>(nb) * nb, 0.0);
+}
+
+Eigen::SparseMatrix<double, Eigen::ColMajor, int> BlockSparseMatrix::to_csc() const {
+  // Blocks of every block column, in increasing block row.
+  std::vector<long long> cstart(nbr_ + 1, 0);
+  for (int c : cols_) ++cstart[c + 1];
+  for (int C = 0; C < nbr_; ++C) cstart[C + 1] += cstart[C];
+  std::vector<std::pair<int, long long>> bycol(cols_.size());
+  std::vector<long long> fill(cstart.begin(), cstart.end() - 1);
+  for (int R = 0; R < nbr_; ++R)
+    for (long long k = row_start_[R]; k < row_start_[R + 1]; ++k) bycol[fill[cols_[k]]++] = {R, k};
+  const long long nnz = static_cast<long long>(cols_.size()) * nb_ * nb_;
+  if (nnz > 2000000000LL) throw NumericalError("block matrix too large for 32-bit sparse indices");
+  Eigen::SparseMatrix<double, Eigen::ColMajor, int> A(rows(), rows());
+  A.resizeNonZeros(static_cast<Eigen::Index>(nnz));
+  int* outer = A.outerIndexPtr();
+  int* inner = A.innerIndexPtr();
+  double* val = A.valuePtr();
+  outer[rows()] = static_cast<int>(nnz);
+#pragma omp parallel for schedule(static)
+  for (int C = 0; C < nbr_; ++C) {
+    const long long nblk = cstart[C + 1] - cstart[C];
+    for (int j = 0; j < nb_; ++j) {
+      long long base = cstart[C] * nb_ * nb_ + static_cast<long long>(j) * nblk * nb_;
+      outer[C * nb_ + j] = static_cast<int>(base);
+      for (long long t = 0; t < nblk; ++t) {
+        const auto [R, k] = bycol[cstart[C] + t];
+        const double* src = block(k) + static_cast<long long>(j) * nb_;
+        for (int a = 0; a < nb_; ++a) {
+          inner[base + t * nb_ + a] = R * nb_ + a;
+          val[base + t * nb_ + a] = src[a];
+        }
+      }
+    }
+  }
+  return A;
+}
+
 long long BlockSparseMatrix::find(int I, int J) const {
   auto b = cols_.begin() + row_start_[I], e = cols_.begin() + row_start_[I + 1];
   auto it = std::lower_bound(b, e, J);
   return (it != e && *it == J) ? static_cast<long long>(it - cols_.begin()) : -1;
 }
 
+BlockSparseMatrix BlockSparseMatrix::permuted(const std::vector<int>& order) const {
+  if (static_cast<int>(order.size()) != nbr_) throw NumericalError("block matrix: permutation of the wrong size");
+  std::vector<int> inv(nbr_, -1);
+  for (int i = 0; i < nbr_; ++i) {
+    if (order[i] < 0 || order[i] >= nbr_ || inv[order[i]] >= 0) throw NumericalError("block matrix: not a permutation");
+    inv[order[i]] = i;
+  }
+  BlockSparseMatrix B;
+  B.nb_ = nb_;
+  B.nbr_ = nbr_;
+  B.row_start_.assign(nbr_ + 1, 0);
+  for (int i = 0; i < nbr_; ++i) B.row_start_[i + 1] = B.row_start_[i] + (row_start_[order[i] + 1] - row_start_[order[i]]);
+  B.cols_.resize(cols_.size());
+  B.values_.resize(values_.size());
+  const size_t bs = static_cast<size_t>(nb_) * nb_;
+#pragma omp parallel
+  {
+    std::vector<std::pair<int, long long>> row;
+#pragma omp for schedule(static)
+    for (int i = 0; i < nbr_; ++i) {
+      const int I = order[i];
+      row.clear();
+      for (long long k = row_start_[I]; k < row_start_[I + 1]; ++k) row.emplace_back(inv[cols_[k]], k);
+      std::sort(row.begin(), row.end());
+      long long out = B.row_start_[i];
+      for (const auto& [j, k] : row) {
+        B.cols_[out] = j;
+        std::copy(values_.begin() + k * bs, values_.begin() + (k + 1) * bs, B.values_.begin() + out * bs);
+        ++out;
+      }
+    }
+  }
+  return B;
+}
+
 void BlockSparseMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   y.resize(rows());
   const int nb = nb_;
+  dispatch_block_size(nb, [&](auto NBc) {
+    constexpr int NB = decltype(NBc)::value;
+    using Mat = Eigen::Matrix<double, NB, NB>;
+    using Vec = Eigen::Matrix<double, NB, 1>;
 #pragma omp parallel for schedule(static)
-  for (int I = 0; I < nbr_; ++I) {
-    Eigen::VectorXd acc = Eigen::VectorXd::Zero(nb);
-    for (long long k = row_start_[I]; k < row_start_[I + 1]; ++k)
-      acc.noalias() += CMapM(block(k), nb, nb) * x.segment(static_cast<Eigen::Index>(cols_[k]) * nb, nb);
-    y.segment(static_cast<Eigen::Index>(I) * nb, nb) = acc;
-  }
+    for (int I = 0; I < nbr_; ++I) {
+      Vec acc = Vec::Zero(nb);
+      for (long long k = row_start_[I]; k < row_start_[I + 1]; ++k)
+        acc.noalias() += Eigen::Map<const Mat>(block(k), nb, nb) *
+                         Eigen::Map<const Vec>(x.data() + static_cast<Eigen::Index>(cols_[k]) * nb, nb);
+      Eigen::Map<Vec>(y.data() + static_cast<Eigen::Index>(I) * nb, nb) = acc;
+    }
+  });
 }
 
 // ---------------------------------------------------------------------------- block ILU(0)
 
-void BlockILU0::compute(const BlockSparseMatrix& A) {
-  LU_ = A;
+void BlockILU0::compute(const BlockSparseMatrix& A, const std::vector<int>& order) {
+  order_ = order;
+  LU_ = order.empty() ? A : A.permuted(order);
   const int n = A.block_rows(), nb = A.block_size();
   const auto& rs = LU_.row_start();
   const auto& cols = LU_.cols();
@@ -101,49 +200,69 @@ void BlockILU0::compute(const BlockSparseMatrix& A) {
     diag_[I] = LU_.find(I, I);
     if (diag_[I] < 0) throw NumericalError("block ILU: block row " + std::to_string(I) + " has no diagonal block");
   }
-  Eigen::MatrixXd tmp(nb, nb);
-  for (int I = 0; I < n; ++I) {
-    for (long long k = rs[I]; k < diag_[I]; ++k) {
-      const int K = cols[k];
-      MapM LIK(LU_.block(k), nb, nb);
-      tmp.noalias() = LIK * CMapM(LU_.block(diag_[K]), nb, nb);  // diagonal stores inv(U_KK)
-      LIK = tmp;
-      // Row I -= L_IK * (row K beyond its diagonal), restricted to row I's pattern.
-      long long a = k + 1, aend = rs[I + 1];
-      for (long long b = diag_[K] + 1; b < rs[K + 1]; ++b) {
-        const int J = cols[b];
-        while (a < aend && cols[a] < J) ++a;
-        if (a == aend) break;
-        if (cols[a] == J) MapM(LU_.block(a), nb, nb).noalias() -= LIK * CMapM(LU_.block(b), nb, nb);
+  dispatch_block_size(nb, [&](auto NBc) {
+    constexpr int NB = decltype(NBc)::value;
+    using Mat = Eigen::Matrix<double, NB, NB>;
+    Mat tmp(nb, nb);
+    for (int I = 0; I < n; ++I) {
+      for (long long k = rs[I]; k < diag_[I]; ++k) {
+        const int K = cols[k];
+        Eigen::Map<Mat> LIK(LU_.block(k), nb, nb);
+        tmp.noalias() = LIK * Eigen::Map<const Mat>(LU_.block(diag_[K]), nb, nb);  // diagonal = inv(U_KK)
+        LIK = tmp;
+        // Row I -= L_IK * (row K beyond its diagonal), restricted to row I's pattern.
+        long long a = k + 1, aend = rs[I + 1];
+        for (long long b = diag_[K] + 1; b < rs[K + 1]; ++b) {
+          const int J = cols[b];
+          while (a < aend && cols[a] < J) ++a;
+          if (a == aend) break;
+          if (cols[a] == J)
+            Eigen::Map<Mat>(LU_.block(a), nb, nb).noalias() -= LIK * Eigen::Map<const Mat>(LU_.block(b), nb, nb);
+        }
       }
+      Eigen::Map<Mat> DI(LU_.block(diag_[I]), nb, nb);
+      tmp = Eigen::PartialPivLU<Mat>(DI).inverse();
+      if (!tmp.allFinite()) throw NumericalError("block ILU: singular pivot block in row " + std::to_string(I));
+      DI = tmp;
     }
-    MapM DI(LU_.block(diag_[I]), nb, nb);
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu(DI);
-    tmp = lu.inverse();
-    if (!tmp.allFinite()) throw NumericalError("block ILU: singular pivot block in row " + std::to_string(I));
-    DI = tmp;
-  }
+  });
 }
 
 void BlockILU0::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
   const int n = LU_.block_rows(), nb = LU_.block_size();
   const auto& rs = LU_.row_start();
   const auto& cols = LU_.cols();
-  z = r;
-  Eigen::VectorXd acc(nb);
-  for (int I = 0; I < n; ++I) {
-    acc = z.segment(static_cast<Eigen::Index>(I) * nb, nb);
-    for (long long k = rs[I]; k < diag_[I]; ++k)
-      acc.noalias() -= CMapM(LU_.block(k), nb, nb) * z.segment(static_cast<Eigen::Index>(cols[k]) * nb, nb);
-    z.segment(static_cast<Eigen::Index>(I) * nb, nb) = acc;
+  if (order_.empty()) {
+    z = r;
+  } else {
+    z.resize(r.size());
+    for (int i = 0; i < n; ++i)
+      z.segment(static_cast<Eigen::Index>(i) * nb, nb) = r.segment(static_cast<Eigen::Index>(order_[i]) * nb, nb);
   }
-  Eigen::VectorXd t(nb);
-  for (int I = n - 1; I >= 0; --I) {
-    acc = z.segment(static_cast<Eigen::Index>(I) * nb, nb);
-    for (long long k = diag_[I] + 1; k < rs[I + 1]; ++k)
-      acc.noalias() -= CMapM(LU_.block(k), nb, nb) * z.segment(static_cast<Eigen::Index>(cols[k]) * nb, nb);
-    t.noalias() = CMapM(LU_.block(diag_[I]), nb, nb) * acc;
-    z.segment(static_cast<Eigen::Index>(I) * nb, nb) = t;
+  dispatch_block_size(nb, [&](auto NBc) {
+    constexpr int NB = decltype(NBc)::value;
+    using Mat = Eigen::Matrix<double, NB, NB>;
+    using Vec = Eigen::Matrix<double, NB, 1>;
+    auto seg = [&](int I) { return Eigen::Map<Vec>(z.data() + static_cast<Eigen::Index>(I) * nb, nb); };
+    Vec acc(nb), t(nb);
+    for (int I = 0; I < n; ++I) {  // L y = r (unit block-lower)
+      acc = seg(I);
+      for (long long k = rs[I]; k < diag_[I]; ++k)
+        acc.noalias() -= Eigen::Map<const Mat>(LU_.block(k), nb, nb) * seg(cols[k]);
+      seg(I) = acc;
+    }
+    for (int I = n - 1; I >= 0; --I) {  // U z = y, diagonal blocks stored inverted
+      acc = seg(I);
+      for (long long k = diag_[I] + 1; k < rs[I + 1]; ++k)
+        acc.noalias() -= Eigen::Map<const Mat>(LU_.block(k), nb, nb) * seg(cols[k]);
+      t.noalias() = Eigen::Map<const Mat>(LU_.block(diag_[I]), nb, nb) * acc;
+      seg(I) = t;
+    }
+  });
+  if (!order_.empty()) {
+    Eigen::VectorXd y = z;
+    for (int i = 0; i < n; ++i)
+      z.segment(static_cast<Eigen::Index>(order_[i]) * nb, nb) = y.segment(static_cast<Eigen::Index>(i) * nb, nb);
   }
 }
 

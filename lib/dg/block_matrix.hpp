@@ -16,11 +16,17 @@ class BlockSparseMatrix {
   /// Converts a compressed-column sparse matrix whose size is a multiple of nb. Entries missing
   /// from a block that has some entry are stored as zeros.
   BlockSparseMatrix(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& A, int nb);
+  /// Zero matrix with the given block pattern (row_start: block_rows + 1 offsets into cols;
+  /// cols sorted within each row).
+  BlockSparseMatrix(int nb, std::vector<long long> row_start, std::vector<int> cols);
 
   int block_size() const { return nb_; }
   int block_rows() const { return nbr_; }
   int rows() const { return nbr_ * nb_; }
   long long num_blocks() const { return static_cast<long long>(cols_.size()); }
+
+  /// The same matrix in compressed column storage (every block entry stored, zeros included).
+  Eigen::SparseMatrix<double, Eigen::ColMajor, int> to_csc() const;
 
   /// y = A x (parallel over block rows, deterministic).
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
@@ -31,6 +37,10 @@ class BlockSparseMatrix {
   double* block(long long k) { return values_.data() + k * nb_ * nb_; }
   /// Index k of block (I, J), or -1.
   long long find(int I, int J) const;
+
+  /// The symmetrically permuted matrix B = P A P^T with block row/column order[i] of A becoming
+  /// block i of B (`order` is a permutation of 0..block_rows()-1).
+  BlockSparseMatrix permuted(const std::vector<int>& order) const;
 
  private:
   int nb_ = 0, nbr_ = 0;
@@ -47,12 +57,14 @@ class BlockILU0 {
  public:
   BlockILU0() = default;
   explicit BlockILU0(const BlockSparseMatrix& A) { compute(A); }
-  void compute(const BlockSparseMatrix& A);
+  /// Factorises in the block order `order` (elimination order: order[0] first); empty = natural.
+  void compute(const BlockSparseMatrix& A, const std::vector<int>& order = {});
   void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
 
  private:
   BlockSparseMatrix LU_;                ///< L below, U above the diagonal; diagonal = inv(U_II)
   std::vector<long long> diag_;         ///< index of the diagonal block per row
+  std::vector<int> order_;              ///< elimination order (empty = natural)
 };
 
 /// Block Jacobi: z = inv(A_II) r_I per block row.

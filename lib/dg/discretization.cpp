@@ -187,15 +187,61 @@ DGDiscretization::~DGDiscretization() = default;
 
 void DGDiscretization::assemble(SparseMatrixCSC& A, Eigen::VectorXd& b) const {
   const Impl& I = *impl_;
-  const int nc = mesh_.num_cells(), nb = nb_, n1 = I.n1, nq = I.nq, Q = I.Q;
-  const int N = num_dofs();
+  const int N = num_dofs(), nb = nb_;
   A.resize(N, N);
   A.resizeNonZeros(static_cast<Eigen::Index>(I.nnz));
   int* outer = A.outerIndexPtr();
   int* inner = A.innerIndexPtr();
   double* val = A.valuePtr();
-  b.setZero(N);
   outer[N] = static_cast<int>(I.nnz);
+  assemble_columns(
+      [&](int c, const std::vector<MatrixXd>& blk) {
+        const std::vector<int>& rows = I.rows[c];
+        const int nr = static_cast<int>(rows.size());
+        const long long len = static_cast<long long>(nr) * nb;
+        for (int bcol = 0; bcol < nb; ++bcol) {
+          long long base = I.col_start[c] + bcol * len;
+          outer[c * nb + bcol] = static_cast<int>(base);
+          for (int k = 0; k < nr; ++k) {
+            const int r0 = rows[k] * nb;
+            const double* src = blk[k].data() + static_cast<long long>(bcol) * nb;
+            for (int a = 0; a < nb; ++a) {
+              inner[base + k * nb + a] = r0 + a;
+              val[base + k * nb + a] = src[a];
+            }
+          }
+        }
+      },
+      b);
+}
+
+void DGDiscretization::assemble(BlockSparseMatrix& A, Eigen::VectorXd& b) const {
+  const Impl& I = *impl_;
+  const int nc = mesh_.num_cells(), nb = nb_;
+  // The pattern is symmetric: block row r holds the cells of rows[r].
+  std::vector<long long> rs(nc + 1, 0);
+  for (int c = 0; c < nc; ++c) rs[c + 1] = rs[c] + static_cast<long long>(I.rows[c].size());
+  std::vector<int> cols;
+  cols.reserve(rs[nc]);
+  for (int c = 0; c < nc; ++c) cols.insert(cols.end(), I.rows[c].begin(), I.rows[c].end());
+  A = BlockSparseMatrix(nb, std::move(rs), std::move(cols));
+  const size_t bs = static_cast<size_t>(nb) * nb;
+  assemble_columns(
+      [&](int c, const std::vector<MatrixXd>& blk) {
+        const std::vector<int>& rows = I.rows[c];
+        for (size_t k = 0; k < rows.size(); ++k) {
+          long long pos = A.find(rows[k], c);
+          std::copy(blk[k].data(), blk[k].data() + bs, A.block(pos));
+        }
+      },
+      b);
+}
+
+void DGDiscretization::assemble_columns(
+    const std::function<void(int, const std::vector<Eigen::MatrixXd>&)>& scatter, Eigen::VectorXd& b) const {
+  const Impl& I = *impl_;
+  const int nc = mesh_.num_cells(), nb = nb_, n1 = I.n1, nq = I.nq, Q = I.Q;
+  b.setZero(num_dofs());
 
   const Eigen::Matrix2d D = cs_.diffusion;
   const Vec2 cvec = cs_.advection;
@@ -358,19 +404,7 @@ void DGDiscretization::assemble(SparseMatrixCSC& A, Eigen::VectorXd& b) const {
       }
 
       // ---------------------------------------------------------------- scatter
-      const long long len = static_cast<long long>(nr) * nb;
-      for (int bcol = 0; bcol < nb; ++bcol) {
-        long long base = I.col_start[c] + bcol * len;
-        outer[c * nb + bcol] = static_cast<int>(base);
-        for (int k = 0; k < nr; ++k) {
-          const int r0 = rows[k] * nb;
-          const double* src = blk[k].data() + static_cast<long long>(bcol) * nb;
-          for (int a = 0; a < nb; ++a) {
-            inner[base + k * nb + a] = r0 + a;
-            val[base + k * nb + a] = src[a];
-          }
-        }
-      }
+      scatter(c, blk);
       b.segment(static_cast<long long>(c) * nb, nb) = rhs;
     }
   }

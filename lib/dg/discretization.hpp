@@ -35,11 +35,13 @@
 // compressed column storage directly; the result does not depend on the number of threads.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <memory>
 #include <vector>
 
 #include "case/case.hpp"
 #include "dg/basis.hpp"
+#include "dg/block_matrix.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/topology.hpp"
 
@@ -77,6 +79,9 @@ class DGDiscretization {
   /// Assembles A (num_dofs square, compressed column storage, block pattern: a cell's block
   /// column holds rows of itself and its face neighbours) and b.
   void assemble(SparseMatrixCSC& A, Eigen::VectorXd& b) const;
+  /// Same system in block form (block = cell), as the block preconditioners use it: no
+  /// compressed-column copy is made.
+  void assemble(BlockSparseMatrix& A, Eigen::VectorXd& b) const;
   /// R(U) = A U - b (assembles).
   Eigen::VectorXd residual(const Eigen::VectorXd& U) const;
 
@@ -105,6 +110,10 @@ class DGDiscretization {
 
  private:
   struct Impl;
+  /// The assembly loop; scatter(c, blocks) stores cell c's block column (blocks[k] is the
+  /// block of row cell rows(c)[k]), called concurrently for different c.
+  void assemble_columns(const std::function<void(int, const std::vector<Eigen::MatrixXd>&)>& scatter,
+                        Eigen::VectorXd& b) const;
   const Mesh& mesh_;
   const Case& cs_;
   int p_, nb_;

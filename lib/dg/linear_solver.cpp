@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <memory>
 
 #include "core/error.hpp"
 #include "dg/block_matrix.hpp"
@@ -144,10 +145,11 @@ VectorXd solve_direct_sparselu(const SparseMatrixCSC& A, const VectorXd& b, Line
 LinearSolverKind parse_linear_solver(const std::string& name) {
   for (auto k : {LinearSolverKind::Auto, LinearSolverKind::UmfPack, LinearSolverKind::SparseLU,
                  LinearSolverKind::GmresBlockILU, LinearSolverKind::BicgstabBlockILU, LinearSolverKind::GmresBlockJacobi,
-                 LinearSolverKind::BicgstabILUT})
+                 LinearSolverKind::BicgstabILUT, LinearSolverKind::GmresTwoLevel})
     if (linear_solver_name(k) == name) return k;
   throw InputError("unknown linear solver '" + name +
-                   "' (valid: auto, umfpack, sparselu, gmres-bilu0, bicgstab-bilu0, gmres-bjacobi, bicgstab-ilut)");
+                   "' (valid: auto, umfpack, sparselu, gmres-bilu0, bicgstab-bilu0, gmres-bjacobi, bicgstab-ilut, "
+                   "gmres-2level)");
 }
 
 std::string linear_solver_name(LinearSolverKind kind) {
@@ -159,78 +161,152 @@ std::string linear_solver_name(LinearSolverKind kind) {
     case LinearSolverKind::BicgstabBlockILU: return "bicgstab-bilu0";
     case LinearSolverKind::GmresBlockJacobi: return "gmres-bjacobi";
     case LinearSolverKind::BicgstabILUT: return "bicgstab-ilut";
+    case LinearSolverKind::GmresTwoLevel: return "gmres-2level";
   }
   return "?";
 }
 
-Eigen::VectorXd solve_linear(const SparseMatrixCSC& A, const Eigen::VectorXd& b, const LinearSolverOptions& opt,
-                             LinearSolveInfo* info_out) {
-  LinearSolveInfo info;
-  LinearSolverKind kind = opt.kind == LinearSolverKind::Auto ? LinearSolverKind::UmfPack : opt.kind;
-  info.solver = linear_solver_name(kind);
-  VectorXd x;
-  const double bnorm = b.norm();
-  auto finish = [&](VectorXd&& sol) {
-    if (info.iterations == 0) info.relative_residual = bnorm > 0 ? (b - A * sol).norm() / bnorm : 0.0;
-    if (info_out) *info_out = info;
-    return std::move(sol);
-  };
-  if (kind == LinearSolverKind::UmfPack) return finish(solve_direct_umfpack(A, b, info));
-  if (kind == LinearSolverKind::SparseLU) return finish(solve_direct_sparselu(A, b, info));
+namespace {
 
+/// One iterative attempt; returns false (x undefined) when the tolerance is not reached.
+bool solve_iterative(LinearSolverKind kind, const SparseMatrixCSC& A, const BlockSparseMatrix* B,
+                     const VectorXd& b, const LinearSolverOptions& opt, int max_it, VectorXd& x,
+                     LinearSolveInfo& info) {
   auto t0 = std::chrono::steady_clock::now();
+  const double bnorm = b.norm();
   double res = 0;
   int it = 0;
   if (kind == LinearSolverKind::BicgstabILUT) {
     Eigen::BiCGSTAB<SparseMatrixCSC, Eigen::IncompleteLUT<double>> solver;
     solver.setTolerance(opt.rtol);
-    solver.setMaxIterations(opt.max_iterations);
+    solver.setMaxIterations(max_it);
     solver.compute(A);
-    info.setup_seconds = seconds_since(t0);
+    info.setup_seconds += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
     x = solver.solve(b);
     it = static_cast<int>(solver.iterations());
     res = bnorm > 0 ? (b - A * x).norm() / bnorm : 0.0;
   } else {
-    BlockSparseMatrix B(A, opt.block_size);
-    Op op = [&](const VectorXd& v, VectorXd& w) { B.multiply(v, w); };
+    Op op = [&](const VectorXd& v, VectorXd& w) { B->multiply(v, w); };
     BlockILU0 ilu;
     BlockJacobi jac;
+    TwoLevelPreconditioner two;
     Op pre;
-    if (kind == LinearSolverKind::GmresBlockJacobi) {
-      jac.compute(B);
+    if (kind == LinearSolverKind::GmresTwoLevel) {
+      if (!opt.coarse) throw NumericalError("gmres-2level needs the mesh's coarse space");
+      two.compute(*B, *opt.coarse, opt.post_smooth, opt.block_order);
+      pre = [&](const VectorXd& r, VectorXd& z) { two.apply(r, z); };
+    } else if (kind == LinearSolverKind::GmresBlockJacobi) {
+      jac.compute(*B);
       pre = [&](const VectorXd& r, VectorXd& z) { jac.apply(r, z); };
     } else {
-      ilu.compute(B);
+      ilu.compute(*B, opt.block_order);
       pre = [&](const VectorXd& r, VectorXd& z) { ilu.apply(r, z); };
     }
-    info.setup_seconds = seconds_since(t0);
+    info.setup_seconds += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
     if (kind == LinearSolverKind::BicgstabBlockILU)
-      it = bicgstab(op, pre, b, x, opt.rtol, opt.max_iterations, res);
+      it = bicgstab(op, pre, b, x, opt.rtol, max_it, res);
     else
-      it = gmres(op, pre, b, x, opt.rtol, opt.max_iterations, opt.restart, res);
+      it = gmres(op, pre, b, x, opt.rtol, max_it, opt.restart, res);
   }
-  info.solve_seconds = seconds_since(t0);
-  info.iterations = std::max(it, 1);
+  info.solve_seconds += seconds_since(t0);
+  info.iterations += std::max(it, 1);
   info.relative_residual = res;
   // Accept a residual a little above the tolerance (rounding in the true residual).
-  if (!(res <= 10 * opt.rtol)) {
-    if (opt.kind == LinearSolverKind::Auto) {
-      LinearSolveInfo d;
-      VectorXd xd = solve_direct_umfpack(A, b, d);
-      d.solver = info.solver + "->umfpack";
-      d.iterations = 0;
-      d.fallback = true;
-      d.setup_seconds += info.setup_seconds;
-      d.solve_seconds += info.solve_seconds;
-      info = d;
-      return finish(std::move(xd));
+  return res <= 10 * opt.rtol;
+}
+
+}  // namespace
+
+bool uses_compressed_columns(LinearSolverKind kind) {
+  return kind == LinearSolverKind::UmfPack || kind == LinearSolverKind::SparseLU ||
+         kind == LinearSolverKind::BicgstabILUT;
+}
+
+namespace {
+
+/// The common driver: A is given as compressed columns (csc) or blocks (blk); the other form is
+/// built when a method needs it.
+VectorXd solve_any(const SparseMatrixCSC* csc, const BlockSparseMatrix* blk, const VectorXd& b,
+                   const LinearSolverOptions& opt, LinearSolveInfo* info_out) {
+  LinearSolveInfo info;
+  const double bnorm = b.norm();
+  SparseMatrixCSC csc_own;
+  std::unique_ptr<BlockSparseMatrix> blk_own;
+  auto need_csc = [&]() -> const SparseMatrixCSC& {
+    if (!csc) {
+      auto t0 = std::chrono::steady_clock::now();
+      csc_own = blk->to_csc();
+      csc = &csc_own;
+      info.setup_seconds += seconds_since(t0);
     }
-    throw NumericalError(info.solver + " did not converge: relative residual " + std::to_string(res) + " after " +
-                         std::to_string(it) + " iterations (try --solver umfpack)");
+    return *csc;
+  };
+  auto need_blk = [&]() -> const BlockSparseMatrix& {
+    if (!blk) {
+      auto t0 = std::chrono::steady_clock::now();
+      blk_own = std::make_unique<BlockSparseMatrix>(*csc, opt.block_size);
+      blk = blk_own.get();
+      info.setup_seconds += seconds_since(t0);
+    }
+    return *blk;
+  };
+  auto direct = [&](LinearSolverKind kind) {
+    const SparseMatrixCSC& A = need_csc();
+    blk_own.reset();
+    VectorXd x = kind == LinearSolverKind::SparseLU ? solve_direct_sparselu(A, b, info) : solve_direct_umfpack(A, b, info);
+    info.relative_residual = bnorm > 0 ? (b - A * x).norm() / bnorm : 0.0;
+    return x;
+  };
+  auto iterative = [&](LinearSolverKind kind, int max_it, VectorXd& x) {
+    if (kind == LinearSolverKind::BicgstabILUT) return solve_iterative(kind, need_csc(), nullptr, b, opt, max_it, x, info);
+    const BlockSparseMatrix& B = need_blk();
+    return solve_iterative(kind, SparseMatrixCSC(), &B, b, opt, max_it, x, info);
+  };
+  VectorXd x;
+  if (opt.kind == LinearSolverKind::UmfPack || opt.kind == LinearSolverKind::SparseLU) {
+    info.solver = linear_solver_name(opt.kind);
+    x = direct(opt.kind);
+  } else if (opt.kind != LinearSolverKind::Auto) {
+    info.solver = linear_solver_name(opt.kind);
+    if (!iterative(opt.kind, opt.max_iterations, x))
+      throw NumericalError(info.solver + " did not converge: relative residual " + std::to_string(info.relative_residual) +
+                           " after " + std::to_string(info.iterations) + " iterations (try --solver umfpack)");
+  } else {
+    std::vector<LinearSolverKind> chain;
+    if (opt.coarse && !opt.pure_advection)
+      chain = {LinearSolverKind::GmresTwoLevel, LinearSolverKind::GmresBlockILU};
+    else
+      chain = {LinearSolverKind::GmresBlockILU};
+    bool ok = false;
+    for (LinearSolverKind k : chain) {
+      info.solver += (info.solver.empty() ? "" : "->") + linear_solver_name(k);
+      if (iterative(k, opt.auto_max_iterations, x)) {
+        ok = true;
+        break;
+      }
+    }
+    if (!ok) {
+      info.solver += "->umfpack";
+      info.fallback = true;
+      x = direct(LinearSolverKind::UmfPack);
+    }
   }
-  return finish(std::move(x));
+  if (info_out) *info_out = info;
+  return x;
+}
+
+}  // namespace
+
+Eigen::VectorXd solve_linear(const SparseMatrixCSC& A, const Eigen::VectorXd& b, const LinearSolverOptions& opt,
+                             LinearSolveInfo* info) {
+  return solve_any(&A, nullptr, b, opt, info);
+}
+
+Eigen::VectorXd solve_linear(const BlockSparseMatrix& B, const Eigen::VectorXd& b, const LinearSolverOptions& opt,
+                             LinearSolveInfo* info) {
+  return solve_any(nullptr, &B, b, opt, info);
 }
 
 }  // namespace quadapt

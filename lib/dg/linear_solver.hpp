@@ -8,16 +8,26 @@
 //   bicgstab-bilu0 BiCGSTAB with the same preconditioner
 //   gmres-bjacobi  restarted GMRES with block Jacobi (cell blocks)
 //   bicgstab-ilut  Eigen's BiCGSTAB with IncompleteLUT (scalar threshold ILU)
-//   auto           the measured default (docs/bench-dgsolve.md): umfpack.
+//   gmres-2level   restarted GMRES with the two-level preconditioner of dg/two_level.hpp (block
+//                  ILU(0) smoother + continuous bilinear coarse space; needs opt.coarse)
+//   auto           the measured default (docs/bench-dgsolve.md): gmres-2level when the problem
+//                  has diffusion and a coarse space is given, else gmres-bilu0 (with the block
+//                  order, e.g. downwind for advection); if that does not converge within
+//                  auto_max_iterations, the other iterative method, then umfpack.
 // Iterative methods stop at ||b - A x|| <= rtol ||b|| (true residual checked at the end).
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
+#include "dg/block_matrix.hpp"
 #include "dg/discretization.hpp"
+#include "dg/two_level.hpp"
 
 namespace quadapt {
 
-enum class LinearSolverKind { Auto, UmfPack, SparseLU, GmresBlockILU, BicgstabBlockILU, GmresBlockJacobi, BicgstabILUT };
+enum class LinearSolverKind {
+  Auto, UmfPack, SparseLU, GmresBlockILU, BicgstabBlockILU, GmresBlockJacobi, BicgstabILUT, GmresTwoLevel
+};
 
 struct LinearSolverOptions {
   LinearSolverKind kind = LinearSolverKind::Auto;
@@ -25,6 +35,11 @@ struct LinearSolverOptions {
   double rtol = 1e-12;       ///< relative residual tolerance of the iterative methods
   int max_iterations = 3000; ///< total Krylov iterations
   int restart = 80;          ///< GMRES restart length
+  const VertexCoarseSpace* coarse = nullptr;  ///< coarse space of gmres-2level
+  bool post_smooth = true;   ///< gmres-2level: smooth after the coarse correction too
+  std::vector<int> block_order;  ///< elimination order of the block ILU (empty = natural)
+  bool pure_advection = false;   ///< auto: no diffusion (the coarse space would not help)
+  int auto_max_iterations = 300; ///< auto: iterations before trying the next method
 };
 
 struct LinearSolveInfo {
@@ -44,5 +59,11 @@ std::string linear_solver_name(LinearSolverKind kind);
 /// requested iterative method does not converge.
 Eigen::VectorXd solve_linear(const SparseMatrixCSC& A, const Eigen::VectorXd& b, const LinearSolverOptions& opt,
                              LinearSolveInfo* info = nullptr);
+/// Same for a block matrix (block size = opt.block_size is ignored; B's is used). Direct
+/// solvers and bicgstab-ilut convert it to compressed columns first.
+Eigen::VectorXd solve_linear(const BlockSparseMatrix& B, const Eigen::VectorXd& b, const LinearSolverOptions& opt,
+                             LinearSolveInfo* info = nullptr);
+/// Whether `kind` works on compressed columns (direct solvers, bicgstab-ilut) rather than blocks.
+bool uses_compressed_columns(LinearSolverKind kind);
 
 }  // namespace quadapt

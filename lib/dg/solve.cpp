@@ -1,5 +1,6 @@
 #include "dg/solve.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -13,23 +14,47 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 }  // namespace
 
+std::vector<int> downwind_order(const Mesh& mesh, const Eigen::Vector2d& c) {
+  std::vector<int> order;
+  if (c.isZero(0.0)) return order;
+  const int n = mesh.num_cells();
+  std::vector<double> key(n);
+  for (int k = 0; k < n; ++k) key[k] = c.dot(cell_centroid(mesh, k));
+  order.resize(n);
+  for (int k = 0; k < n; ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key[a] < key[b]; });
+  return order;
+}
+
 DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& opt) {
   DGSolveResult r;
   auto t0 = std::chrono::steady_clock::now();
   DGDiscretization dg(mesh, cs, opt.p, opt.dg);
   SparseMatrixCSC A;
+  BlockSparseMatrix B;
   Eigen::VectorXd b;
-  dg.assemble(A, b);
+  const bool csc = uses_compressed_columns(opt.solver.kind);
+  if (csc)
+    dg.assemble(A, b);
+  else
+    dg.assemble(B, b);
   r.t_assemble = seconds_since(t0);
 
   t0 = std::chrono::steady_clock::now();
   LinearSolverOptions so = opt.solver;
   so.block_size = dg.dofs_per_cell();
-  r.U = solve_linear(A, b, so, &r.solve);
+  VertexCoarseSpace coarse;
+  if (!cs.advection_only()) {
+    coarse = make_vertex_coarse_space(mesh, opt.p);
+    so.coarse = &coarse;
+  }
+  so.pure_advection = cs.advection_only();
+  if (so.block_order.empty() && cs.advection_only()) so.block_order = downwind_order(mesh, cs.advection);
+  r.U = csc ? solve_linear(A, b, so, &r.solve) : solve_linear(B, b, so, &r.solve);
   r.t_solve = seconds_since(t0);
   if (!r.U.allFinite()) throw NumericalError("the DG solution is not finite (singular system?)");
-  A.resize(0, 0);
-  A.data().squeeze();
+  A = SparseMatrixCSC();
+  B = BlockSparseMatrix();
 
   t0 = std::chrono::steady_clock::now();
   r.p = opt.p;

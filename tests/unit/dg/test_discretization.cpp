@@ -105,6 +105,38 @@ TEST_CASE("parallel assembly is deterministic and independent of the thread coun
   CHECK(same);
 }
 
+TEST_CASE("block assembly equals the compressed-column assembly; block matrix operations") {
+  Case cs = parse_case(R"J({"exact": "sin(3*x)*y", "diffusion": [[0.2, 0.05], [0.05, 0.1]], "advection": [1, 2]})J",
+                       "t.json");
+  Mesh m = dgtest::half_split(make_perturbed_quads(5, 5, 0.25, 3));
+  DGDiscretization dg(m, cs, 2);
+  SparseMatrixCSC A;
+  BlockSparseMatrix B;
+  Eigen::VectorXd b1, b2;
+  dg.assemble(A, b1);
+  dg.assemble(B, b2);
+  CHECK(b1 == b2);
+  SparseMatrixCSC C = B.to_csc();
+  CHECK((Eigen::MatrixXd(A) - Eigen::MatrixXd(C)).norm() == 0.0);
+  BlockSparseMatrix B2(A, dg.dofs_per_cell());
+  CHECK(B2.num_blocks() == B.num_blocks());
+  Eigen::VectorXd x = Eigen::VectorXd::Random(dg.num_dofs()), y1, y2;
+  B.multiply(x, y1);
+  y2 = A * x;
+  CHECK((y1 - y2).norm() < 1e-13 * y2.norm());
+  // A permuted matrix multiplies permuted vectors.
+  std::vector<int> order(m.num_cells());
+  for (int i = 0; i < m.num_cells(); ++i) order[i] = (7 * i + 3) % m.num_cells();
+  BlockSparseMatrix P = B.permuted(order);
+  const int nb = dg.dofs_per_cell();
+  Eigen::VectorXd xp(x.size()), yp;
+  for (int i = 0; i < m.num_cells(); ++i) xp.segment(i * nb, nb) = x.segment(order[i] * nb, nb);
+  P.multiply(xp, yp);
+  double err = 0;
+  for (int i = 0; i < m.num_cells(); ++i) err += (yp.segment(i * nb, nb) - y1.segment(order[i] * nb, nb)).norm();
+  CHECK(err < 1e-12 * y1.norm());
+}
+
 TEST_CASE("functional J = int u^2 over a boundary: exact value, convergence, derivative") {
   // S-shock (thesis eq. 6.4) on 16x16: J(u_exact) over x = 1 is 0.562499959215865
   // (PHiLiP's reference value, shared/reference/philip-fixtures/README.md).
@@ -164,6 +196,28 @@ TEST_CASE("iterative solvers agree with the direct solver") {
                  LinearSolverKind::GmresBlockJacobi, LinearSolverKind::Auto}) {
     CAPTURE(linear_solver_name(k));
     CHECK((solve(dg, k) - ref).norm() < 1e-9 * ref.norm());
+  }
+  // The two-level method (block form, with the coarse space of the mesh), also on the
+  // transposed system as the adjoint will use it.
+  {
+    BlockSparseMatrix B;
+    Eigen::VectorXd b;
+    dg.assemble(B, b);
+    VertexCoarseSpace vc = make_vertex_coarse_space(m, 2);
+    LinearSolverOptions o;
+    o.kind = LinearSolverKind::GmresTwoLevel;
+    o.coarse = &vc;
+    LinearSolveInfo info;
+    Eigen::VectorXd x = solve_linear(B, b, o, &info);
+    CHECK((x - ref).norm() < 1e-9 * ref.norm());
+    CHECK(info.iterations < 40);
+    SparseMatrixCSC A;
+    dg.assemble(A, b);
+    SparseMatrixCSC At = A.transpose();
+    Eigen::VectorXd g = Eigen::VectorXd::Random(dg.num_dofs());
+    o.block_size = dg.dofs_per_cell();
+    Eigen::VectorXd psi = solve_linear(At, g, o, &info);
+    CHECK((A.transpose() * psi - g).norm() < 1e-10 * g.norm());
   }
   // Pure advection too (non-symmetric, no diffusion).
   Case adv = parse_case(R"J({"exact": "sin(3*x)*cos(2*y)", "advection": [1.1, "-pi/e"]})J", "a.json");

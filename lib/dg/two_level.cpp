@@ -1,0 +1,111 @@
+#include "dg/two_level.hpp"
+
+#include <Eigen/UmfPackSupport>
+
+#include "core/error.hpp"
+#include "dg/basis.hpp"
+
+namespace quadapt {
+
+VertexCoarseSpace make_vertex_coarse_space(const Mesh& mesh, int p) {
+  VertexCoarseSpace cs;
+  cs.num_coarse = mesh.num_nodes();
+  cs.nb = (p + 1) * (p + 1);
+  cs.vert.resize(mesh.num_cells());
+  for (int c = 0; c < mesh.num_cells(); ++c) {
+    if (!mesh.cells[c].is_quad()) throw InputError("mesh: the DG coarse space needs quads");
+    for (int k = 0; k < 4; ++k) cs.vert[c][k] = mesh.cells[c].v[k];
+  }
+  LagrangeBasis1D b(p);
+  const auto& x = b.nodes();
+  cs.shape.resize(cs.nb, 4);
+  for (int j = 0; j <= p; ++j)
+    for (int i = 0; i <= p; ++i) {
+      const int a = i + (p + 1) * j;
+      const double xi = x[i], eta = x[j];
+      cs.shape(a, 0) = 0.25 * (1 - xi) * (1 - eta);
+      cs.shape(a, 1) = 0.25 * (1 + xi) * (1 - eta);
+      cs.shape(a, 2) = 0.25 * (1 + xi) * (1 + eta);
+      cs.shape(a, 3) = 0.25 * (1 - xi) * (1 + eta);
+    }
+  return cs;
+}
+
+struct TwoLevelPreconditioner::Impl {
+  const BlockSparseMatrix* A = nullptr;
+  VertexCoarseSpace coarse;
+  BlockILU0 ilu;
+  Eigen::SparseMatrix<double> Ac;  // UmfPackLU keeps a reference to its matrix
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
+  bool post = true;
+};
+
+TwoLevelPreconditioner::TwoLevelPreconditioner() : impl_(std::make_unique<Impl>()) {}
+TwoLevelPreconditioner::~TwoLevelPreconditioner() = default;
+
+void TwoLevelPreconditioner::compute(const BlockSparseMatrix& A, const VertexCoarseSpace& coarse, bool post_smooth,
+                                     const std::vector<int>& order) {
+  Impl& I = *impl_;
+  if (A.block_size() != coarse.nb || A.block_rows() != static_cast<int>(coarse.vert.size()))
+    throw NumericalError("two-level preconditioner: coarse space does not match the matrix blocks");
+  I.A = &A;
+  I.coarse = coarse;
+  I.post = post_smooth;
+  I.ilu.compute(A, order);
+
+  // A_c = P^T A P, block by block: (S^T A_IJ S) scattered to the vertices of I and J.
+  const int n = A.block_rows(), nb = A.block_size();
+  const auto& rs = A.row_start();
+  const auto& cols = A.cols();
+  std::vector<Eigen::Matrix4d> local(static_cast<size_t>(A.num_blocks()));
+  const Eigen::MatrixXd& S = coarse.shape;
+#pragma omp parallel for schedule(static)
+  for (int r = 0; r < n; ++r)
+    for (long long k = rs[r]; k < rs[r + 1]; ++k)
+      local[k] = S.transpose() * Eigen::Map<const Eigen::MatrixXd>(A.block(k), nb, nb) * S;
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(local.size() * 16);
+  for (int r = 0; r < n; ++r)
+    for (long long k = rs[r]; k < rs[r + 1]; ++k)
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) trip.emplace_back(coarse.vert[r][a], coarse.vert[cols[k]][b], local[k](a, b));
+  Eigen::SparseMatrix<double>& Ac = I.Ac;
+  Ac.resize(coarse.num_coarse, coarse.num_coarse);
+  Ac.setFromTriplets(trip.begin(), trip.end());
+  // Nodes that belong to no cell would give empty rows: put a 1 on their diagonal.
+  for (int i = 0; i < coarse.num_coarse; ++i)
+    if (Ac.col(i).nonZeros() == 0) Ac.coeffRef(i, i) = 1.0;
+  Ac.makeCompressed();
+  I.lu.compute(Ac);
+  if (I.lu.info() != Eigen::Success) throw NumericalError("two-level preconditioner: singular coarse matrix");
+}
+
+void TwoLevelPreconditioner::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  const Impl& I = *impl_;
+  const int n = I.A->block_rows(), nb = I.A->block_size();
+  const Eigen::MatrixXd& S = I.coarse.shape;
+  I.ilu.apply(r, z);
+  Eigen::VectorXd t;
+  I.A->multiply(z, t);
+  Eigen::VectorXd rr = r - t;
+  Eigen::VectorXd rc = Eigen::VectorXd::Zero(I.coarse.num_coarse);
+  for (int c = 0; c < n; ++c) {
+    Eigen::Vector4d v = S.transpose() * rr.segment(static_cast<Eigen::Index>(c) * nb, nb);
+    for (int k = 0; k < 4; ++k) rc[I.coarse.vert[c][k]] += v[k];
+  }
+  Eigen::VectorXd xc = I.lu.solve(rc);
+#pragma omp parallel for schedule(static)
+  for (int c = 0; c < n; ++c) {
+    Eigen::Vector4d v;
+    for (int k = 0; k < 4; ++k) v[k] = xc[I.coarse.vert[c][k]];
+    z.segment(static_cast<Eigen::Index>(c) * nb, nb).noalias() += S * v;
+  }
+  if (!I.post) return;
+  I.A->multiply(z, t);
+  rr = r - t;
+  Eigen::VectorXd w;
+  I.ilu.apply(rr, w);
+  z += w;
+}
+
+}  // namespace quadapt
