@@ -27,13 +27,14 @@ int main(int argc, char** argv) {
       "two consecutive cycles, and writes the constrained Delaunay triangulation with the "
       "boundary groups. Sizes: the metric is M_eff = scale * M with scale 1/4, so points are "
       "4h1 x 4h2 apart and the all-quad mesh made by 'recombine' (Blossom + split into 4) has "
-      "edges 2h1 x 2h2, the frame's parallelogram. --analytic saddle runs the thesis's "
+      "edges 2h1 x 2h2, the frame's parallelogram (PHiLiP's files use full-edge sizes: "
+      "--convention philip). --analytic saddle runs the thesis's "
       "validation (eq. 6.1 on [-1.3,1.3]^2, 20 random start points; --sampled: the metric "
       "sampled on a 16x16 grid) without FRAME. The report has points, requested_points, "
       "iterations, energy, grad_norm, converged and the whole convergence history. An "
       "optimiser that stops early still writes a valid mesh (\"converged\": false; with --strict "
       "exit code 1).");
-  std::string in, out, analytic, voronoi_out, init = "";
+  std::string in, out, analytic, voronoi_out, init = "", convention = "quadapt";
   LpcvtOptions opt;
   double scale = -1;
   int grid = 16;
@@ -46,7 +47,13 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(2.0, 32.0));
   app.add_option("--scale", scale,
-                 "Metric scale: M_eff = scale * M (default 0.25 for frames, 1 for --analytic)");
+                 "Metric scale: M_eff = scale * M (default 0.25 for quadapt frames, 0.5 with "
+                 "--convention philip, 1 for --analytic)");
+  app.add_option("--convention", convention,
+                 "Size convention of FRAME: quadapt (d = det M / 4, DESIGN.md) or philip (the thesis's "
+                 "files: full-edge sizes, d = det M, so M_quadapt = 2 M_philip)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"quadapt", "philip"}));
   app.add_option("--analytic", analytic, "Validation metric instead of FRAME: 'saddle' (eq. 6.1)")
       ->check(CLI::IsMember({"saddle"}));
   app.add_flag("--sampled", sampled, "With --analytic: sample the metric at the centres of a --grid grid");
@@ -94,7 +101,8 @@ int main(int argc, char** argv) {
         ValidateOptions vo;
         vo.required_fields = {"Vinv"};
         validate_mesh(m, in, vo);
-        bg = std::make_unique<Background>(Background::from_frame(m, scale > 0 ? scale : 0.25, in));
+        const double def = convention == "philip" ? 0.5 : 0.25;
+        bg = std::make_unique<Background>(Background::from_frame(m, scale > 0 ? scale : def, in));
         opt.seed_mode = init == "uniform" ? SeedMode::Uniform : SeedMode::Density;
         tool.option("metric", "frame Vinv");
       }
@@ -140,7 +148,7 @@ int main(int argc, char** argv) {
              std::to_string(alp.mean_deviation) + " deg (length-weighted means)");
     if (!r.converged) {
       tool.log("warning: not converged (" + r.stop + "); the mesh is valid but the points are not optimal");
-      if (strict) throw PartialFailure("lpcvt: not converged: " + r.stop);
+      if (strict) throw PartialFailure("not converged: " + r.stop + " (mesh written)");
     }
   });
 }

@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# lpcvt: frames written like PHiLiP's (tests/cli/lpcvt_frame.py), the thesis's §6.1 validation
+# (--analytic saddle, golden figures), a non-convex domain, early stops, bad input.
+set -euo pipefail
+S=$QUADAPT_SOURCE_DIR
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+PY=/usr/bin/python3
+FRAME="$PY $S/tests/cli/lpcvt_frame.py"
+
+# 1. isotropic frame h = 0.025 on the unit square: spacing 4h = 0.1, 121 points requested
+$FRAME "$T/iso.msh" --n 4 --h1 0.025 --h2 0.025
+lpcvt "$T/iso.msh" -o "$T/iso-tri.msh" 2> "$T/iso.err"
+grep -q "cycle 1:" "$T/iso.err"
+$PY - "$T/iso-tri.json" "$T/iso-tri.msh" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+for k in ("points", "iterations", "energy", "grad_norm", "converged", "history", "cycle_history", "requested_points"):
+    assert k in r, k
+assert r["converged"] is True, r["stop"]
+assert abs(r["points"] / r["requested_points"] - 1) < 0.05, (r["points"], r["requested_points"])
+assert abs(r["area"] - 1) < 1e-12 and abs(r["domain_area"] - 1) < 1e-12
+assert r["largest_angle_metric_median"] > 83, r["largest_angle_metric_median"]
+h = r["history"]
+assert len(h["energy"]) == len(h["grad_norm"]) == len(h["cycle"]) > 10
+# boundary groups kept: PHiLiP-like files get the unit square's side names
+msh = open(sys.argv[2]).read()
+for name in ("bottom", "right", "top", "left"):
+    assert f'"{name}"' in msh, name
+PY
+
+# 2. the thesis's §6.1 experiment on the 16x16 background: golden figures (rtol 1e-6)
+lpcvt --analytic saddle --sampled -o "$T/saddle.msh" --voronoi "$T/saddle-vor.json" -q
+$PY - "$T/saddle.json" "$T/saddle-figures.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+keep = ["points", "boundary_points", "triangles", "cycles", "iterations", "energy", "converged",
+        "requested_points", "largest_angle_median"]
+json.dump({k: r[k] for k in keep}, open(sys.argv[2], "w"), indent=1)
+assert r["converged"] and r["cycles"] <= 8
+PY
+$PY "$S/tests/cli/golden_compare.py" "$T/saddle-figures.json" "$S/tests/golden/lpcvt/saddle16.json" --rtol 1e-6
+$PY - "$T/saddle-vor.json" <<'PY'
+import json, sys
+v = json.load(open(sys.argv[1]))
+assert len(v["initial"]["sites"]) == v["initial"]["nfixed"] + 20
+assert len(v["final"]["edges"]) > len(v["initial"]["edges"])
+PY
+
+# 3. L-shape (non-convex) with an anisotropic frame at 30 degrees
+$FRAME "$T/L.msh" --n 8 --h1 0.03 --h2 0.015 --theta 0.5236 --lshape
+lpcvt "$T/L.msh" -o "$T/L-tri.msh" --max-cycles 3 -q
+$PY - "$T/L-tri.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert abs(r["area"] - 0.75) < 1e-12, r["area"]
+assert abs(r["points"] / r["requested_points"] - 1) < 0.1, (r["points"], r["requested_points"])
+PY
+
+# 4. an optimiser stopped by the iteration cap: valid mesh, "converged": false, a warning;
+#    --strict turns it into exit code 1 with the mesh still written
+lpcvt "$T/iso.msh" -o "$T/cap.msh" --max-iterations 2 --max-cycles 1 2> "$T/cap.err"
+grep -q "warning: not converged" "$T/cap.err"
+$PY -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['converged'] is False" "$T/cap.json"
+set +e
+lpcvt "$T/iso.msh" -o "$T/strict.msh" --max-iterations 2 --max-cycles 1 --strict -q
+rc=$?
+set -e
+[ $rc -eq 1 ] && [ -s "$T/strict.msh" ]
+
+# 5. bad input: exit 2, one line naming the file, nothing written
+for bad in nofield nan singular; do
+  $FRAME "$T/bad-$bad.msh" --n 2 --corrupt $bad
+  set +e
+  lpcvt "$T/bad-$bad.msh" -o "$T/out-$bad.msh" 2> "$T/bad-$bad.err"
+  rc=$?
+  set -e
+  [ $rc -eq 2 ] || { echo "bad input $bad: exit $rc"; exit 1; }
+  grep -q "bad-$bad.msh" "$T/bad-$bad.err"
+  [ ! -e "$T/out-$bad.msh" ] && [ ! -e "$T/out-$bad.json" ]
+done
+grep -q "Vinv" "$T/bad-nofield.err"
+grep -q "non-finite" "$T/bad-nan.err"
+grep -q "singular" "$T/bad-singular.err"
+# never overwrite the input
+set +e
+lpcvt "$T/iso.msh" -o "$T/iso.msh" -q 2> /dev/null
+rc=$?
+set -e
+[ $rc -eq 2 ]
+
+# 6. a real PHiLiP frame, read as it is (short run)
+D=$QUADAPT_SHARED_DIR/reference/philip-fixtures
+if [ -f "$D/input_ss15_fb_p1_3.msh" ]; then
+  lpcvt "$D/input_ss15_fb_p1_3.msh" --convention philip -o "$T/ss.msh" --max-cycles 1 --max-iterations 30 -q
+  $PY - "$T/ss.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert abs(r["area"] - 1) < 1e-9 and r["triangles"] > 300, r
+PY
+fi
+echo "lpcvt: ok"
