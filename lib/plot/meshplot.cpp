@@ -336,7 +336,7 @@ std::string render_mesh_svg(const Mesh& m, const MeshPlotOptions& opt, MeshPlotS
         inv.push_back(1.0 / g.w.norm());
       }
       const double ref = percentile(inv, 0.98);
-      const double s = (std::isfinite(ref) && ref > 0) ? 0.035 * extent * opt.glyph_scale / ref : 0;
+      const double s = (std::isfinite(ref) && ref > 0) ? 0.025 * extent * opt.glyph_scale / ref : 0;
       PathData dv, dw;
       for (const auto& g : gl) {
         const double lv = s / g.v.squaredNorm(), lw = s / g.w.squaredNorm();  // (v/|v|) * s/|v|

@@ -17,7 +17,7 @@
 //     v, w with |v| = h1, |w| = h2, eq. 3.11/3.13), as one glyph per cell centroid:
 //     - Cross (default, thesis Fig. 6.5): the two axes +-v/|v| and +-w/|w| with half-lengths
 //       proportional to 1/|v| and 1/|w| ("1/h": long arms where small sizes are requested),
-//       v in red, w in blue; the 98th percentile of half-lengths is 3.5% of the window's size
+//       v in red, w in blue; the 98th percentile of half-lengths is 2.5% of the window's size
 //       times glyph_scale;
 //     - Parallelogram: the target element c +- v +- w at true size (edges 2 h1 x 2 h2,
 //       eq. 5.1) times glyph_scale.

@@ -4,6 +4,7 @@
   loopctl.py get FILE.json KEY [KEY...]     print the values (one per line, '' when absent;
                                             KEY may be dotted: timings.total)
   loopctl.py summary SOL.json              one line: cells, dofs, l2_error, functional_error
+  loopctl.py show convergence.csv [COL...] aligned table of some columns
   loopctl.py check-case CASE.json           exit 1 with a message unless CASE is a JSON object
   loopctl.py params OUT/loop.json KEY=VAL.. write/compare the run's parameters (exit 1 on a
                                             mismatch, naming the differing keys)
@@ -86,6 +87,29 @@ def cmd_summary(args):
         return "%.3e" % v if isinstance(v, float) else ("-" if v is None else str(v))
     print("cells=%s dofs=%s l2_error=%s functional_error=%s" % (g("cells"), g("dofs"), g("l2_error"),
                                                                 g("functional_error")))
+
+
+def cmd_show(args):
+    """show CSV [COL...]: an aligned text table of the chosen columns (default: the main ones)."""
+    cols = args[1:] or ["step", "cells", "dofs", "l2_error", "functional_error", "t_solve", "t_step"]
+    with open(args[0]) as fh:
+        rows = list(csv.DictReader(fh))
+    cells = [cols]
+    for r in rows:
+        line = []
+        for c in cols:
+            v = r.get(c, "")
+            try:
+                x = float(v)
+                v = v if c in ("step", "cells", "dofs") else ("%.3e" % x if "error" in c or "functional" in c
+                                                              else "%.2f" % x)
+            except ValueError:
+                pass
+            line.append(v)
+        cells.append(line)
+    w = [max(len(row[i]) for row in cells) for i in range(len(cols))]
+    for row in cells:
+        print("  ".join(v.rjust(w[i]) for i, v in enumerate(row)))
 
 
 def cmd_check_case(args):
@@ -195,7 +219,7 @@ def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     cmd, args = sys.argv[1], sys.argv[2:]
-    {"get": cmd_get, "summary": cmd_summary, "check-case": cmd_check_case, "params": cmd_params, "table": cmd_table,
+    {"get": cmd_get, "summary": cmd_summary, "show": cmd_show, "check-case": cmd_check_case, "params": cmd_params, "table": cmd_table,
      "stop": cmd_stop}.get(cmd, lambda a: sys.exit("loopctl: unknown command " + cmd))(args)
 
 

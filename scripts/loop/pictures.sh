@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Pictures of a loop's run directory (called at the end of run-loop.sh; also
 # `make -f Makefile.cases pictures OUT=dir [WINDOW=x0,x1,y0,y1] [ALL_STEPS=yes]`).
-#   pictures.sh OUT [--window x0,x1,y0,y1] [--all-steps] [--title NAME]
+#   pictures.sh OUT [--window x0,x1,y0,y1] [--all-steps] [--title NAME] [--thesis-case KEY]
+# (KEY: a case of thesis-tables.json, e.g. sshock-feature: its final points go on the plot)
 # Writes, when the inputs exist and the picture is older than them:
 #   OUT/final-mesh.png, OUT/final-solution.png, OUT/final-mesh-closeup.png (with --window),
 #   OUT/final-frame.png (the frame that made the final mesh, 1/h crosses as thesis Fig. 6.5),
@@ -13,12 +14,13 @@ set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
 OUT="${1:?usage: pictures.sh OUT [--window W] [--all-steps] [--title NAME]}"; shift
-WINDOW="" ALL=0 NAME="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
+WINDOW="" ALL=0 THESIS_KEY="" NAME="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
 while [ $# -gt 0 ]; do
   case "$1" in
     --window) WINDOW="$2"; shift 2 ;;
     --all-steps) ALL=1; shift ;;
     --title) NAME="$2"; shift 2 ;;
+    --thesis-case) THESIS_KEY="$2"; shift 2 ;;
     *) echo "pictures: unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -69,8 +71,11 @@ if "$PY" -c "import matplotlib" 2>/dev/null; then
   p="$("$PY" "$here/loopctl.py" get "$OUT/loop.json" p)"
   mode="$("$PY" "$here/loopctl.py" get "$OUT/loop.json" mode)"
   method="$("$PY" "$here/loopctl.py" get "$OUT/loop.json" method)"
+  thesis=()
+  tt="${THESIS_TABLES:-$root/../shared/reference/thesis-tables.json}"
+  [ -n "$THESIS_KEY" ] && [ -f "$tt" ] && thesis=(--thesis "$tt" --thesis-case "$THESIS_KEY")
   if [ ! -s "$OUT/convergence.png" ] || [ "$OUT/convergence.csv" -nt "$OUT/convergence.png" ]; then
-    "$PY" "$root/scripts/plot/convergence.py" --p "$p" --mode "$mode" --title "$NAME, p = $p" \
+    "$PY" "$root/scripts/plot/convergence.py" --p "$p" --mode "$mode" --title "$NAME, p = $p" ${thesis[@]+"${thesis[@]}"} \
       -o "$OUT/convergence.png" "$method=$OUT/convergence.csv" 2>"$OUT/plot.log" \
       || echo "pictures: warning: convergence plot failed (see $OUT/plot.log)" >&2
   fi

@@ -4,7 +4,7 @@
 #   run-loop.sh --case CASE.json --mesh START.msh --p P --method lpcvt|bamg|fixed-fraction|uniform
 #               --mode feature|goal --steps N --growth G --out DIR
 #               [--maxdofs N] [--fraction F] [--ff-by FIELD] [--seed S] [--smooth-bamg yes|no]
-#               [--pictures yes|no] [--window x0,x1,y0,y1] [--check-only]
+#               [--pictures yes|no] [--window x0,x1,y0,y1] [--thesis-case KEY] [--check-only]
 #
 # Every input is checked, and every tool the method needs is looked up, BEFORE any work starts.
 # Step K lives in DIR/step-K/: mesh.msh (its mesh), sol.msh (dgsolve), then per method
@@ -26,7 +26,7 @@ ctl() { "$PY" "$here/loopctl.py" "$@"; }
 die() { echo "loop: error: $*" >&2; exit 2; }
 
 CASE="" MESH="" P="" METHOD="" MODE="" STEPS="" GROWTH="1.5" OUT="" MAXDOFS="0" FRACTION="0.3" FF_BY=""
-SEED="1" SMOOTH_BAMG="yes" PICTURES="yes" WINDOW="" CHECK_ONLY=0
+SEED="1" SMOOTH_BAMG="yes" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0
 while [ $# -gt 0 ]; do
   opt="$1"
   case "$opt" in
@@ -39,7 +39,7 @@ while [ $# -gt 0 ]; do
     --mode) MODE="$val" ;; --steps) STEPS="$val" ;; --growth) GROWTH="$val" ;; --out) OUT="$val" ;;
     --maxdofs) MAXDOFS="$val" ;; --fraction) FRACTION="$val" ;; --ff-by) FF_BY="$val" ;;
     --seed) SEED="$val" ;; --smooth-bamg) SMOOTH_BAMG="$val" ;; --pictures) PICTURES="$val" ;;
-    --window) WINDOW="$val" ;;
+    --window) WINDOW="$val" ;; --thesis-case) THESIS_KEY="$val" ;;
     *) die "unknown option $opt (see docs/loop.md)" ;;
   esac
 done
@@ -239,6 +239,6 @@ echo "$last" > "$OUT/loop.done.tmp-$$" && mv -f "$OUT/loop.done.tmp-$$" "$OUT/lo
 
 # ------------------------------------------------------------------ pictures (optional)
 if [ "$PICTURES" = yes ]; then
-  "$here/pictures.sh" "$OUT" --title "$name" ${WINDOW:+--window "$WINDOW"}
+  "$here/pictures.sh" "$OUT" --title "$name" ${WINDOW:+--window "$WINDOW"} ${THESIS_KEY:+--thesis-case "$THESIS_KEY"}
 fi
 say "done: $rows solves; table $OUT/convergence.csv"

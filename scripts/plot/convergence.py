@@ -80,16 +80,14 @@ def main():
     if a.thesis and a.thesis_case:
         with open(a.thesis) as f:
             rows = json.load(f)["cases"][a.thesis_case]["rows"]
-        first = True
         for r in rows:
             if r["p"] != a.p:
                 continue
             m = THESIS_METHOD.get(r["method"], r["method"])
             ax.loglog([r["dofs"]], [r["error"]], linestyle="none", marker="*", markersize=11,
                       markerfacecolor="none", markeredgewidth=1.2, color=STYLE.get(m, {}).get("color", "k"),
-                      label="thesis, final mesh" if first else None)
+                      label="thesis %s (final)" % m)
             all_pts.append((r["dofs"], r["error"]))
-            first = False
 
     if all_pts:
         nmin = min(p[0] for p in all_pts)
