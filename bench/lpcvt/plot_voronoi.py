@@ -64,7 +64,7 @@ def main():
     if a.title:
         fig.suptitle(a.title)
     fig.tight_layout()
-    fig.savefig(a.out, dpi=110)
+    fig.savefig(a.out, dpi=85)
 
 
 if __name__ == "__main__":
