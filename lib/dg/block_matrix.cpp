@@ -189,8 +189,9 @@ void BlockSparseMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) c
 
 // ---------------------------------------------------------------------------- block ILU(0)
 
-void BlockILU0::compute(const BlockSparseMatrix& A, const std::vector<int>& order) {
+void BlockILU0::compute(const BlockSparseMatrix& A, const std::vector<int>& order, bool single_precision) {
   order_ = order;
+  single_.clear();
   LU_ = order.empty() ? A : A.permuted(order);
   const int n = A.block_rows(), nb = A.block_size();
   const auto& rs = LU_.row_start();
@@ -226,44 +227,64 @@ void BlockILU0::compute(const BlockSparseMatrix& A, const std::vector<int>& orde
       DI = tmp;
     }
   });
+  if (single_precision) {
+    const std::vector<double>& v = LU_.values();
+    single_.resize(v.size());
+#pragma omp parallel for schedule(static)
+    for (long long i = 0; i < static_cast<long long>(v.size()); ++i) single_[i] = static_cast<float>(v[i]);
+    LU_.release_values();
+  }
 }
 
-void BlockILU0::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
-  const int n = LU_.block_rows(), nb = LU_.block_size();
-  const auto& rs = LU_.row_start();
-  const auto& cols = LU_.cols();
-  if (order_.empty()) {
-    z = r;
-  } else {
-    z.resize(r.size());
-    for (int i = 0; i < n; ++i)
-      z.segment(static_cast<Eigen::Index>(i) * nb, nb) = r.segment(static_cast<Eigen::Index>(order_[i]) * nb, nb);
-  }
+namespace {
+/// Forward and backward block substitution on z (in the factor's block order), in scalar type T.
+template <class T>
+void ilu_solve(int n, int nb, const std::vector<long long>& rs, const std::vector<int>& cols,
+               const std::vector<long long>& diag, const T* vals, T* z) {
+  const size_t bs = static_cast<size_t>(nb) * nb;
   dispatch_block_size(nb, [&](auto NBc) {
     constexpr int NB = decltype(NBc)::value;
-    using Mat = Eigen::Matrix<double, NB, NB>;
-    using Vec = Eigen::Matrix<double, NB, 1>;
-    auto seg = [&](int I) { return Eigen::Map<Vec>(z.data() + static_cast<Eigen::Index>(I) * nb, nb); };
+    using Mat = Eigen::Matrix<T, NB, NB>;
+    using Vec = Eigen::Matrix<T, NB, 1>;
+    auto seg = [&](int I) { return Eigen::Map<Vec>(z + static_cast<size_t>(I) * nb, nb); };
+    auto blk = [&](long long k) { return Eigen::Map<const Mat>(vals + k * bs, nb, nb); };
     Vec acc(nb), t(nb);
     for (int I = 0; I < n; ++I) {  // L y = r (unit block-lower)
       acc = seg(I);
-      for (long long k = rs[I]; k < diag_[I]; ++k)
-        acc.noalias() -= Eigen::Map<const Mat>(LU_.block(k), nb, nb) * seg(cols[k]);
+      for (long long k = rs[I]; k < diag[I]; ++k) acc.noalias() -= blk(k) * seg(cols[k]);
       seg(I) = acc;
     }
     for (int I = n - 1; I >= 0; --I) {  // U z = y, diagonal blocks stored inverted
       acc = seg(I);
-      for (long long k = diag_[I] + 1; k < rs[I + 1]; ++k)
-        acc.noalias() -= Eigen::Map<const Mat>(LU_.block(k), nb, nb) * seg(cols[k]);
-      t.noalias() = Eigen::Map<const Mat>(LU_.block(diag_[I]), nb, nb) * acc;
+      for (long long k = diag[I] + 1; k < rs[I + 1]; ++k) acc.noalias() -= blk(k) * seg(cols[k]);
+      t.noalias() = blk(diag[I]) * acc;
       seg(I) = t;
     }
   });
-  if (!order_.empty()) {
-    Eigen::VectorXd y = z;
+}
+}  // namespace
+
+void BlockILU0::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  const int n = LU_.block_rows(), nb = LU_.block_size();
+  const Eigen::Index N = r.size();
+  // Gather in elimination order.
+  auto src = [&](int i) { return order_.empty() ? i : order_[i]; };
+  z.resize(N);
+  if (!single_.empty()) {
+    Eigen::VectorXf y(N);
     for (int i = 0; i < n; ++i)
-      z.segment(static_cast<Eigen::Index>(order_[i]) * nb, nb) = y.segment(static_cast<Eigen::Index>(i) * nb, nb);
+      y.segment(static_cast<Eigen::Index>(i) * nb, nb) = r.segment(static_cast<Eigen::Index>(src(i)) * nb, nb).cast<float>();
+    ilu_solve<float>(n, nb, LU_.row_start(), LU_.cols(), diag_, single_.data(), y.data());
+    for (int i = 0; i < n; ++i)
+      z.segment(static_cast<Eigen::Index>(src(i)) * nb, nb) = y.segment(static_cast<Eigen::Index>(i) * nb, nb).cast<double>();
+    return;
   }
+  Eigen::VectorXd y(N);
+  for (int i = 0; i < n; ++i)
+    y.segment(static_cast<Eigen::Index>(i) * nb, nb) = r.segment(static_cast<Eigen::Index>(src(i)) * nb, nb);
+  ilu_solve<double>(n, nb, LU_.row_start(), LU_.cols(), diag_, LU_.values().data(), y.data());
+  for (int i = 0; i < n; ++i)
+    z.segment(static_cast<Eigen::Index>(src(i)) * nb, nb) = y.segment(static_cast<Eigen::Index>(i) * nb, nb);
 }
 
 // ---------------------------------------------------------------------------- block Jacobi

@@ -35,6 +35,9 @@ class BlockSparseMatrix {
   const std::vector<int>& cols() const { return cols_; }
   const double* block(long long k) const { return values_.data() + k * nb_ * nb_; }
   double* block(long long k) { return values_.data() + k * nb_ * nb_; }
+  /// All block values (num_blocks * nb * nb); release_values() frees them.
+  const std::vector<double>& values() const { return values_; }
+  void release_values() { std::vector<double>().swap(values_); }
   /// Index k of block (I, J), or -1.
   long long find(int I, int J) const;
 
@@ -52,17 +55,21 @@ class BlockSparseMatrix {
 /// Block incomplete LU with zero fill (ILU(0) on the block pattern, dense blocks) in the
 /// matrix's block order: A ~ L U, L unit block-lower, U block-upper. apply() solves L U z = r.
 /// The factorisation is sequential; its quality depends on the cell order (a downwind or
-/// row-by-row order is best for advection).
+/// row-by-row order is best for advection). The factors are computed in double precision and,
+/// by default, stored and applied in single precision: the triangular solves are memory bound,
+/// and a preconditioner needs no more accuracy (use it with flexible GMRES or BiCGSTAB, which
+/// tolerate an inexact preconditioner).
 class BlockILU0 {
  public:
   BlockILU0() = default;
   explicit BlockILU0(const BlockSparseMatrix& A) { compute(A); }
   /// Factorises in the block order `order` (elimination order: order[0] first); empty = natural.
-  void compute(const BlockSparseMatrix& A, const std::vector<int>& order = {});
+  void compute(const BlockSparseMatrix& A, const std::vector<int>& order = {}, bool single_precision = true);
   void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
 
  private:
   BlockSparseMatrix LU_;                ///< L below, U above the diagonal; diagonal = inv(U_II)
+  std::vector<float> single_;           ///< LU_'s values in single precision (then LU_ has none)
   std::vector<long long> diag_;         ///< index of the diagonal block per row
   std::vector<int> order_;              ///< elimination order (empty = natural)
 };

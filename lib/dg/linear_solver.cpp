@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "core/error.hpp"
 #include "dg/block_matrix.hpp"
@@ -22,34 +23,39 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// Restarted GMRES(m), right preconditioning (x = M^-1 y), modified Gram-Schmidt with Givens
-/// rotations. Returns iterations; `res` = final true relative residual.
+/// Restarted flexible GMRES(m) (Saad 1993): right preconditioning with the preconditioned
+/// vectors Z stored, so the iterate x += Z y is consistent even when the preconditioner is
+/// inexact (single-precision factors); modified Gram-Schmidt, Givens rotations; the basis is
+/// allocated as it grows. Returns the iterations; `res` = final true relative residual.
 int gmres(const Op& A, const Op& Minv, const VectorXd& b, VectorXd& x, double rtol, int max_it, int m,
           double& res) {
   const Eigen::Index n = b.size();
   const double bnorm = b.norm();
   x.setZero(n);
   if (bnorm == 0) { res = 0; return 0; }
-  Eigen::MatrixXd V(n, m + 1), H = Eigen::MatrixXd::Zero(m + 1, m);
-  VectorXd cs(m), sn(m), g(m + 1), r(n), w(n), z(n);
+  std::vector<VectorXd> V, Z;
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m + 1, m);
+  VectorXd cs(m), sn(m), g(m + 1), r = b, w(n);
   int it = 0;
-  r = b;  // x = 0
   double beta = r.norm();
   while (it < max_it) {
-    V.col(0) = r / beta;
+    if (V.empty()) V.emplace_back(n);
+    V[0] = r / beta;
     g.setZero();
     g[0] = beta;
     H.setZero();
     int j = 0;
     for (; j < m && it < max_it; ++j, ++it) {
-      Minv(V.col(j), z);
-      A(z, w);
+      if (static_cast<int>(Z.size()) <= j) Z.emplace_back(n);
+      Minv(V[j], Z[j]);
+      A(Z[j], w);
       for (int i = 0; i <= j; ++i) {
-        H(i, j) = w.dot(V.col(i));
-        w.noalias() -= H(i, j) * V.col(i);
+        H(i, j) = w.dot(V[i]);
+        w.noalias() -= H(i, j) * V[i];
       }
       H(j + 1, j) = w.norm();
-      if (H(j + 1, j) > 0) V.col(j + 1) = w / H(j + 1, j);
+      if (static_cast<int>(V.size()) <= j + 1) V.emplace_back(n);
+      if (H(j + 1, j) > 0) V[j + 1] = w / H(j + 1, j);
       for (int i = 0; i < j; ++i) {
         double t = cs[i] * H(i, j) + sn[i] * H(i + 1, j);
         H(i + 1, j) = -sn[i] * H(i, j) + cs[i] * H(i + 1, j);
@@ -64,11 +70,8 @@ int gmres(const Op& A, const Op& Minv, const VectorXd& b, VectorXd& x, double rt
       g[j] = cs[j] * g[j];
       if (std::abs(g[j + 1]) <= rtol * bnorm) { ++j; ++it; break; }
     }
-    // y = H^-1 g (upper triangular j x j); x += M^-1 V y.
     VectorXd y = H.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
-    VectorXd vy = V.leftCols(j) * y;
-    Minv(vy, z);
-    x += z;
+    for (int i = 0; i < j; ++i) x.noalias() += y[i] * Z[i];
     A(x, w);
     r = b - w;
     beta = r.norm();
