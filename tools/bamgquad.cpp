@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
             "path) meshes the frame's domain (Gmsh 4.8.4's BAMG mis-orients rotated metrics), "
             "Gmsh's Blossom-Quad recombines, and the split makes the mesh all-quad. Boundary "
             "groups are restored by matching the new boundary edges to the frame's boundary "
-            "curves. Report: target complexity, achieved cells and their ratio, BAMG triangles, "
+            "curves. The cell count is calibrated: when a run misses int |det M|/4 by more than 3%, the "
+            "metric is rescaled by target/cells and the path runs again (--runs). Report: target complexity, achieved cells and their ratio, BAMG triangles, "
             "Blossom quads/triangles, quality (angles, scaled Jacobian) and measured stretch.");
   std::string in, out;
   BamgQuadOptions opt;
@@ -34,6 +35,12 @@ int main(int argc, char** argv) {
                  "BAMG's unit edge in frame half-axes (default sqrt(32/sqrt(3)) = 4.2985; 4 = 'twice the "
                  "final edge', which gives ~15% more cells)")
       ->check(CLI::PositiveNumber);
+  std::string convention = "quadapt";
+  app.add_option("--convention", convention,
+                 "Size convention of FRAME: quadapt (target cells 2h1 x 2h2, d = |det M|/4, DESIGN.md) or "
+                 "philip (the thesis's files: full-edge sizes, d = |det M|, so M_quadapt = 2 M_philip)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"quadapt", "philip"}));
   app.add_flag("--arithmetic-mean", arithmetic, "Node metric = arithmetic (not log-Euclidean) mean of the cells'");
   app.add_option("--gradation", opt.ffbamg.gradation,
                  "BAMG metric smoothing: bound on the size ratio between neighbours (ffbamg -ratio; 0 = none)")
@@ -44,12 +51,24 @@ int main(int argc, char** argv) {
   app.add_option("--max-vertices", opt.ffbamg.max_vertices, "BAMG's vertex limit (ffbamg -nbv)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  app.add_option("--runs", opt.max_runs,
+                 "Complexity calibration: at most this many BAMG+Blossom runs, the metric rescaled by "
+                 "target/cells after each run that misses the target by more than --calibration-tolerance "
+                 "(1 = no calibration)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--calibration-tolerance", opt.calibration_tolerance,
+                 "Relative miss of the target cell count accepted without another run")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--pairing", pairing, "Blossom: use only the matching (see recombine --help)");
 
   return tool.run(argc, argv, [&] {
     tool.input(in);
     tool.output(out);
     opt.log_euclidean = !arithmetic;
+    opt.frame_scale = convention == "philip" ? 2.0 : 1.0;
+    tool.option("convention", convention);
     opt.ffbamg.split_boundary_edges = !no_split_edges;
     opt.recombine.blossom.gmsh_cleanup = !pairing;
     tool.option("edge_factor", opt.edge_factor > 0 ? opt.edge_factor : default_bamg_edge_factor());
@@ -57,6 +76,8 @@ int main(int argc, char** argv) {
     tool.option("gradation", opt.ffbamg.gradation);
     tool.option("split_boundary_edges", opt.ffbamg.split_boundary_edges);
     tool.option("blossom_mode", pairing ? "pairing" : "gmsh-cleanup");
+    tool.option("runs", opt.max_runs);
+    tool.option("calibration_tolerance", opt.calibration_tolerance);
     Mesh frame;
     {
       auto ph = tool.phase("read");
@@ -76,6 +97,7 @@ int main(int argc, char** argv) {
     rep["target_complexity"] = st.target_complexity;
     rep["cells"] = st.cells;
     rep["complexity_ratio"] = st.complexity_ratio;
+    rep["calibration"] = {{"runs", st.runs}, {"metric_factor", st.metric_factor}, {"first_ratio", st.first_ratio}};
     rep["bamg"] = {{"vertices", st.bamg_vertices},
                    {"triangles", st.bamg_triangles},
                    {"seconds", st.bamg_seconds},

@@ -1,5 +1,6 @@
 #include "bamg/bamgquad.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "bamg/frame_metric.hpp"
@@ -10,7 +11,9 @@ namespace quadapt {
 
 Mesh bamg_quad(const Mesh& frame, const BamgQuadOptions& opt, BamgQuadStats* stats, const std::string& path) {
   if (frame.cells.empty()) throw InputError(path, "the frame mesh has no cells");
-  const std::vector<Eigen::Matrix2d> M = frame_matrices(frame, path);
+  std::vector<Eigen::Matrix2d> M = frame_matrices(frame, path);
+  if (!(opt.frame_scale > 0)) throw InputError("frame scale must be positive");
+  for (auto& m : M) m *= opt.frame_scale;
   BamgQuadStats st;
   st.frame_cells = frame.num_cells();
   st.target_complexity = frame_complexity(frame, M);
@@ -26,17 +29,38 @@ Mesh bamg_quad(const Mesh& frame, const BamgQuadOptions& opt, BamgQuadStats* sta
   }
   const auto cell_metric = bamg_cell_metrics(M, st.edge_factor);
   const auto vmetric = vertex_metrics(frame, cell_metric, opt.log_euclidean);
-  FfbamgResult fr = run_ffbamg(bg, vmetric, opt.ffbamg);
-  st.bamg_seconds = fr.seconds;
-  st.bamg_command = fr.command;
-  Mesh tri = mesh_from_bamg(fr.mesh, frame);
-  st.bamg_vertices = tri.num_nodes();
-  st.bamg_triangles = tri.num_cells();
-  Mesh q = recombine_to_all_quads(tri, opt.recombine, &st.recombine, path + " (BAMG triangles)");
-  st.cells = q.num_cells();
-  st.complexity_ratio = st.cells / st.target_complexity;
+  const int max_runs = std::max(1, opt.max_runs);
+  double factor = 1;
+  Mesh best;
+  double best_err = 1e300;
+  for (int run = 0; run < max_runs; ++run) {
+    std::vector<Eigen::Matrix2d> scaled = vmetric;
+    for (auto& m : scaled) m *= factor;
+    FfbamgResult fr = run_ffbamg(bg, scaled, opt.ffbamg);
+    Mesh tri = mesh_from_bamg(fr.mesh, frame);
+    RecombineStats rs;
+    Mesh q = recombine_to_all_quads(tri, opt.recombine, &rs, path + " (BAMG triangles)");
+    const double ratio = q.num_cells() / st.target_complexity;
+    ++st.runs;
+    st.bamg_seconds += fr.seconds;
+    if (run == 0) st.first_ratio = ratio;
+    const double err = std::abs(ratio - 1);
+    if (err < best_err) {
+      best_err = err;
+      best = std::move(q);
+      st.bamg_command = fr.command;
+      st.bamg_vertices = tri.num_nodes();
+      st.bamg_triangles = tri.num_cells();
+      st.recombine = rs;
+      st.metric_factor = factor;
+      st.cells = best.num_cells();
+      st.complexity_ratio = ratio;
+    }
+    if (err <= opt.calibration_tolerance) break;
+    factor /= ratio;  // cells ~ sqrt(det(factor * 𝓜)) = factor * ...
+  }
   if (stats) *stats = st;
-  return q;
+  return best;
 }
 
 }  // namespace quadapt

@@ -83,13 +83,15 @@ fi
 # --- a real PHiLiP frame (no boundary groups in the file: named from the unit square's sides)
 F="$SHARED/reference/philip-fixtures/input_ss15_fb_p2_3.msh"
 if [ -f "$F" ]; then
-  bamgquad -q "$F" -o "$T/ph.msh"
+  bamgquad -q "$F" --convention philip -o "$T/ph.msh"
   python3 - "$T/ph.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1])); q = r["quality"]
 if q["triangles"] or q["inverted"] or q["min_scaled_jacobian"] <= 0: sys.exit("FAIL: PHiLiP frame: not a valid all-quad mesh")
-if abs(r["complexity_ratio"] - 1) > 0.25: sys.exit("FAIL: PHiLiP frame: %d cells for a target of %g" % (r["cells"], r["target_complexity"]))
-print("ok: PHiLiP frame: %d cells (target %.0f), min SJ %.3f" % (r["cells"], r["target_complexity"], q["min_scaled_jacobian"]))
+if abs(r["complexity_ratio"] - 1) > 0.10: sys.exit("FAIL: PHiLiP frame: %d cells for a target of %g" % (r["cells"], r["target_complexity"]))
+if abs(r["target_complexity"] - 1296) > 1: sys.exit("FAIL: PHiLiP frame: target %g, expected 1296 (full-edge sizes)" % r["target_complexity"])
+print("ok: PHiLiP frame: %d cells (target %.0f, first run %.3f of it, %d runs), min SJ %.3f" % (r["cells"],
+      r["target_complexity"], r["calibration"]["first_ratio"], r["calibration"]["runs"], q["min_scaled_jacobian"]))
 PY
   for g in bottom right top left; do grep -q "\"$g\"" "$T/ph.msh" || fail "PHiLiP frame: group $g missing"; done
 fi
