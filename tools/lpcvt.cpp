@@ -1,6 +1,7 @@
 // lpcvt: points by L_p-CVT energy minimisation conforming to a frame field, then a constrained
 // Delaunay triangulation (thesis ch. 4, Algorithms 1-3). See docs/lpcvt.md.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -79,7 +80,13 @@ int main(int argc, char** argv) {
     if (in.empty() == analytic.empty()) throw InputError("", "give either FRAME.msh or --analytic saddle");
     if (!in.empty()) tool.input(in);
     tool.output(out);
-    if (!voronoi_out.empty()) tool.output(voronoi_out);
+    if (!voronoi_out.empty()) {
+      tool.output(voronoi_out);
+      namespace fs = std::filesystem;
+      if (fs::path(voronoi_out).lexically_normal() == fs::path(tool.report_path()).lexically_normal() ||
+          fs::path(voronoi_out).lexically_normal() == fs::path(out).lexically_normal())
+        throw InputError("", "--voronoi " + voronoi_out + " would overwrite the mesh or the report");
+    }
     if (!(opt.split.lmin >= 0 && opt.split.lmax > opt.split.lmin))
       throw InputError("", "need 0 <= --lmin < --lmax");
 
