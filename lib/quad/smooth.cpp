@@ -43,11 +43,19 @@ bool cell_valid(const Mesh& m, const Cell& c) {
   return true;
 }
 
-double cells_min_angle(const Mesh& m, const std::vector<int>& cells) {
-  double r = 1e300;
+// Smallest corner angle and smallest corner sine (scaled Jacobian) over the cells.
+struct LocalQuality {
+  double angle = 1e300, sine = 1e300;
+};
+LocalQuality cells_quality(const Mesh& m, const std::vector<int>& cells) {
+  LocalQuality q;
   for (int c : cells)
-    for (int k = 0; k < m.cells[c].nv; ++k) r = std::min(r, corner(m, m.cells[c], k));
-  return r;
+    for (int k = 0; k < m.cells[c].nv; ++k) {
+      const double a = corner(m, m.cells[c], k);
+      q.angle = std::min(q.angle, a);
+      q.sine = std::min(q.sine, std::sin(a));
+    }
+  return q;
 }
 }  // namespace
 
@@ -123,7 +131,7 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt) {
       const auto& cells = node_cells[i];
       std::vector<char> was_valid(cells.size());
       for (size_t k = 0; k < cells.size(); ++k) was_valid[k] = cell_valid(m, m.cells[cells[k]]);
-      const double before = cells_min_angle(m, cells);
+      const LocalQuality before = cells_quality(m, cells);
       bool accepted = false;
       double f = 1.0;
       for (int h = 0; h <= opt.max_halvings; ++h, f *= 0.5) {
@@ -131,7 +139,8 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt) {
         bool ok = true;
         for (size_t k = 0; k < cells.size() && ok; ++k)
           if (was_valid[k] && !cell_valid(m, m.cells[cells[k]])) ok = false;
-        if (ok && cells_min_angle(m, cells) >= before) {
+        const LocalQuality after = ok ? cells_quality(m, cells) : LocalQuality{};
+        if (ok && after.angle >= before.angle && after.sine >= std::min(before.sine, opt.min_sine)) {
           accepted = true;
           (h == 0 ? st.moves_full : st.moves_reduced)++;
           st.max_displacement = std::max(st.max_displacement, f * step.norm());

@@ -17,8 +17,10 @@
 // neighbours a perfect grid of rectangles is a fixed point.)
 //
 // Guard (Gauss-Seidel, nodes in index order): a move is accepted only if every cell around i
-// stays valid (all corner scaled Jacobians > 0) and the minimum corner angle over those cells
-// does not decrease; otherwise the displacement is halved (up to max_halvings times) and
+// stays valid (all corner scaled Jacobians > 0), the minimum corner angle over those cells
+// does not decrease, and their minimum corner sine (the scaled Jacobian, which also catches
+// corners opening towards 180 degrees) does not decrease below min(its old value, min_sine);
+// otherwise the displacement is halved (up to max_halvings times) and
 // retried, else the node is left in place. Since a node only changes the angles of its own
 // cells, the global minimum angle can never decrease and no cell can invert.
 // Boundary nodes (on a free edge or a listed boundary edge) and hanging nodes are fixed.
@@ -30,6 +32,7 @@ struct SmoothOptions {
   int sweeps = 3;         ///< Gauss-Seidel passes over the interior nodes
   int max_halvings = 4;   ///< a rejected move is halved at most this many times
   double tolerance = 0;   ///< stop early when no node moves more than tolerance * local size
+  double min_sine = 0.5;  ///< a move may lower the local minimum corner sine only while it stays above this
 };
 
 struct SmoothStats {

@@ -31,6 +31,7 @@ TEST_CASE("smooth: a perturbed grid improves, min angle never drops, boundary fi
     const auto q1 = quality_summary(m);
     CHECK(st.min_angle_before == doctest::Approx(q0.min_angle_deg));
     CHECK(q1.min_angle_deg >= q0.min_angle_deg);
+    CHECK(q1.min_scaled_jacobian >= std::min(q0.min_scaled_jacobian, 0.5));
     CHECK(q1.inverted == 0);
     CHECK(angle_deviation(m) < angle_deviation(before));
     CHECK(st.moves_full + st.moves_reduced > 0);
@@ -57,9 +58,10 @@ TEST_CASE("smooth: the split of a random Delaunay triangulation (mixed angles) n
   SmoothOptions opt;
   for (int s = 0; s < 4; ++s) {  // one sweep at a time: monotone
     opt.sweeps = 1;
-    double prev = quality_summary(m).min_angle_deg;
+    const auto prev = quality_summary(m);
     angle_smooth(m, opt);
-    CHECK(quality_summary(m).min_angle_deg >= prev);
+    CHECK(quality_summary(m).min_angle_deg >= prev.min_angle_deg);
+    CHECK(quality_summary(m).min_scaled_jacobian >= std::min(prev.min_scaled_jacobian, 0.5));
     CHECK(quality_summary(m).inverted == 0);
   }
   const auto q1 = quality_summary(m);
