@@ -1,0 +1,32 @@
+#include "adjoint/block_transpose.hpp"
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace quadapt {
+
+BlockSparseMatrix block_transpose(const BlockSparseMatrix& A) {
+  const int n = A.block_rows(), nb = A.block_size();
+  const std::vector<long long>& rs = A.row_start();
+  const std::vector<int>& cols = A.cols();
+  // Block (I, J) of A becomes block (J, I): count the blocks of every column J of A.
+  std::vector<long long> start(n + 1, 0);
+  for (long long k = 0; k < A.num_blocks(); ++k) ++start[cols[k] + 1];
+  for (int J = 0; J < n; ++J) start[J + 1] += start[J];
+  std::vector<int> tcols(static_cast<size_t>(A.num_blocks()));
+  std::vector<long long> src(static_cast<size_t>(A.num_blocks()));
+  std::vector<long long> next(start.begin(), start.end() - 1);
+  for (int I = 0; I < n; ++I)  // increasing I keeps every row of the transpose sorted
+    for (long long k = rs[I]; k < rs[I + 1]; ++k) {
+      const long long at = next[cols[k]]++;
+      tcols[at] = I;
+      src[at] = k;
+    }
+  BlockSparseMatrix T(nb, start, std::move(tcols));
+#pragma omp parallel for schedule(static)
+  for (long long k = 0; k < T.num_blocks(); ++k)
+    Eigen::Map<Eigen::MatrixXd>(T.block(k), nb, nb) = Eigen::Map<const Eigen::MatrixXd>(A.block(src[k]), nb, nb).transpose();
+  return T;
+}
+
+}  // namespace quadapt

@@ -1,0 +1,167 @@
+#include "adjoint/dwr.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "core/error.hpp"
+#include "adjoint/block_sweep.hpp"
+#include "adjoint/block_transpose.hpp"
+#include "dg/two_level.hpp"
+#include "dg/solve.hpp"
+
+namespace quadapt {
+
+namespace {
+
+class Stopwatch {
+ public:
+  explicit Stopwatch(std::vector<std::pair<std::string, double>>& out) : out_(out) {}
+  void lap(const std::string& name) {
+    auto now = std::chrono::steady_clock::now();
+    out_.emplace_back(name, std::chrono::duration<double>(now - t_).count());
+    t_ = now;
+  }
+
+ private:
+  std::vector<std::pair<std::string, double>>& out_;
+  std::chrono::steady_clock::time_point t_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace
+
+Eigen::VectorXd read_solution_field(const Mesh& mesh, const std::string& field, const std::string& path, int& p) {
+  const CellNodeField* f = mesh.cell_node_field(field);
+  if (!f) {
+    std::string have;
+    for (const auto& g : mesh.cell_node_fields) have += (have.empty() ? "" : ", ") + g.name;
+    for (const auto& g : mesh.cell_fields) have += (have.empty() ? "" : ", ") + g.name;
+    throw InputError(path, "no DG solution field '" + field + "' (expected a dgsolve output; fields present: " +
+                               (have.empty() ? std::string("none") : have) + ")");
+  }
+  Eigen::VectorXd U;
+  try {
+    U = dg_field_coefficients(*f, p);
+  } catch (const InputError& e) {
+    throw InputError(path, e.what());
+  }
+  const long long want = static_cast<long long>(mesh.num_cells()) * (p + 1) * (p + 1);
+  if (U.size() != want)
+    throw InputError(path, "field '" + field + "' has " + std::to_string(U.size()) + " values; degree " +
+                               std::to_string(p) + " on " + std::to_string(mesh.num_cells()) + " cells needs " +
+                               std::to_string(want));
+  if (!U.allFinite()) throw InputError(path, "field '" + field + "' holds a non-finite value");
+  return U;
+}
+
+Eigen::VectorXd solve_adjoint(const BlockSparseMatrix& A, const Eigen::VectorXd& g, const Mesh& mesh, int pf,
+                              const Eigen::Vector2d& c, bool pure_advection, const AdjointOptions& opt,
+                              LinearSolveInfo* info) {
+  const int nb = (pf + 1) * (pf + 1);
+  if (A.block_size() != nb || A.block_rows() != mesh.num_cells() || g.size() != A.rows())
+    throw Error("solve_adjoint: matrix / right-hand side do not match degree " + std::to_string(pf) + " on the mesh");
+  LinearSolverOptions o = opt.solver;
+  if (opt.ordering == AdjointOrdering::Flow && o.block_order.empty()) o.block_order = downwind_order(mesh, -c);
+  // Pure advection in the downstream-first order: A^T is block lower triangular, one exact
+  // block sweep solves it (adjoint/block_sweep.hpp).
+  if (o.kind == LinearSolverKind::Auto && pure_advection && !o.block_order.empty()) {
+    auto t0 = std::chrono::steady_clock::now();
+    Eigen::VectorXd x;
+    double res = 0;
+    if (solve_transposed_block_sweep(A, o.block_order, g, x, &res) && res <= 10 * o.rtol) {
+      if (info) {
+        *info = LinearSolveInfo();
+        info->solver = "block-sweep";
+        info->relative_residual = res;
+        info->solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      }
+      return x;
+    }
+  }
+  const BlockSparseMatrix At = block_transpose(A);
+  o.block_size = nb;
+  o.pure_advection = pure_advection;
+  const VertexCoarseSpace coarse = make_vertex_coarse_space(mesh, pf);
+  o.coarse = &coarse;
+  const LinearSolverKind kind = o.kind;
+  const bool iterative = kind != LinearSolverKind::UmfPack && kind != LinearSolverKind::SparseLU &&
+                         kind != LinearSolverKind::Auto;
+  try {
+    return solve_linear(At, g, o, info);
+  } catch (const NumericalError&) {
+    if (!iterative || !opt.fallback_direct) throw;
+    o.kind = LinearSolverKind::UmfPack;
+    Eigen::VectorXd x = solve_linear(At, g, o, info);
+    if (info) {
+      info->solver = linear_solver_name(kind) + "->umfpack";
+      info->fallback = true;
+    }
+    return x;
+  }
+}
+
+DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U, int p, const AdjointOptions& opt) {
+  if (!cs.has_functional())
+    throw InputError(cs.path, "the case has no functional; add \"functional\": {\"boundary\": NAME} "
+                              "(J = integral of u^2 over that boundary)");
+  check_case_boundaries(cs, mesh);
+  const int nc = mesh.num_cells();
+  if (p < 1) throw InputError("adjoint: primal degree p = " + std::to_string(p) + " (need p >= 1)");
+  const long long nbc = static_cast<long long>(p + 1) * (p + 1);
+  if (U.size() != nbc * nc)
+    throw InputError("adjoint: solution vector of size " + std::to_string(U.size()) + " does not match degree " +
+                     std::to_string(p) + " on " + std::to_string(nc) + " cells");
+
+  DWRResult r;
+  r.p = p;
+  r.p_fine = p + 1;
+  r.dofs = nbc * nc;
+  Stopwatch sw(r.timings);
+
+  DGDiscretization fine(mesh, cs, p + 1, opt.dg);
+  const int nb = fine.dofs_per_cell();
+  r.fine_dofs = fine.num_dofs();
+  sw.lap("fine_setup");
+
+  const Eigen::VectorXd Uh = fine.inject(U, p);
+  sw.lap("inject");
+
+  BlockSparseMatrix A;
+  Eigen::VectorXd b;
+  fine.assemble(A, b);
+  sw.lap("fine_assemble");
+
+  A.multiply(Uh, r.residual);
+  r.residual -= b;
+  const Eigen::VectorXd g = fine.functional_gradient(Uh);
+  r.functional = fine.functional(Uh);
+  r.functional_exact = fine.functional_exact();
+  r.functional_error = r.functional_exact - r.functional;
+  sw.lap("residual_and_gradient");
+
+  r.psi = solve_adjoint(A, g, mesh, p + 1, cs.advection, cs.advection_only(), opt, &r.solve);
+  sw.lap("adjoint_solve");
+
+  r.eta.resize(nc);
+  r.eta_signed.resize(nc);
+  double est = 0, sum = 0;
+  for (int k = 0; k < nc; ++k) {
+    const long long o = static_cast<long long>(k) * nb;
+    const double s = -r.psi.segment(o, nb).dot(r.residual.segment(o, nb));
+    r.eta_signed[k] = s;
+    r.eta[k] = std::abs(s);
+    est += s;
+    sum += std::abs(s);
+  }
+  r.estimate = est;
+  r.sum_eta = sum;
+  r.effectivity = r.functional_error != 0 ? r.estimate / r.functional_error
+                                          : std::numeric_limits<double>::quiet_NaN();
+  r.corrected = r.functional + r.estimate;
+  sw.lap("dwr");
+  return r;
+}
+
+}  // namespace quadapt

@@ -1,0 +1,98 @@
+#pragma once
+// The dual-weighted residual (DWR) error estimate of a boundary functional on the enriched
+// degree-(p+1) DG space (thesis sections 2.3-2.4, eqs. 2.18-2.27, section 5.4; DESIGN.md 4).
+//
+// Given the degree-p solution u_H of dgsolve on a mesh (conforming or 2:1 non-conforming):
+//   1. inject u_H into the degree-(p+1) space on the same mesh: u_h^H = I_h^H u_H (exact, the
+//      polynomial is unchanged; DGDiscretization::inject);
+//   2. the fine residual R_h(u_h^H) = A_h u_h^H - b_h and the fine Jacobian dR_h/du_h = A_h
+//      (the problem is linear, so A_h does not depend on the linearisation point);
+//   3. the fine adjoint (eq. 2.25):  A_h^T psi = (dJ/du_h |_{u_h^H})^T, J(u) = int_Gamma u^2 ds
+//      over the case's functional boundary, i.e. g_a = int_Gamma 2 u_h^H phi_a ds;
+//   4. the signed estimate (eq. 2.26)  J(u) - J_H(u_H) ~ -psi^T R_h(u_h^H), and per cell
+//      eta_k = | sum_{a in cell k} psi_a R_a |  (eq. 2.27).
+//
+// Linearisation point: the gradient of J is taken at the injected coarse solution u_h^H (thesis
+// eq. 2.25): it is the only state available without a fine primal solve. For this linear PDE
+// the estimate then equals, to rounding,
+//     -psi^T R = J(u_h) - J(u_h^H) - int_Gamma (u_h - u_h^H)^2 ds,
+// with u_h the fine (p+1) DG solution; the missing quadratic term is O(h^(2p+2)), one order
+// beyond the functional error itself, so the effectivity tends to 1 as the mesh is refined.
+//
+// psi holds the nodal (GLL) values of the discrete adjoint function z_h = sum_a psi_a phi_a,
+// which satisfies a_h(v, z_h) = J'(u_h^H)[v] for every fine v: a viewable degree-(p+1) field.
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "case/case.hpp"
+#include "dg/block_matrix.hpp"
+#include "dg/discretization.hpp"
+#include "dg/linear_solver.hpp"
+#include "mesh/mesh.hpp"
+
+namespace quadapt {
+
+/// Elimination order of the block ILU(0) (smoother) in the adjoint solve; it only matters for
+/// the preconditioner's quality under advection.
+///   Mesh:  the mesh's cell order.
+///   Flow:  downstream first (downwind_order of -c, lib/dg/solve.hpp): the adjoint of an upwind
+///          scheme carries information against the flow, so in this order the transposed
+///          advection operator is (block) lower triangular and ILU(0) nearly exact.
+///          Same as Mesh when c = 0.
+enum class AdjointOrdering { Mesh, Flow };
+
+struct AdjointOptions {
+  DGOptions dg;                  ///< must match the primal solve's (penalty factor, quadrature)
+  /// The adjoint linear solver (lib/dg/linear_solver.hpp); block_size, block_order, the coarse
+  /// space and pure_advection are filled in. Default auto: gmres-2level with diffusion, else
+  /// gmres-bilu0, then UMFPACK when they do not converge (measured, docs/adjoint.md).
+  LinearSolverOptions solver;
+  AdjointOrdering ordering = AdjointOrdering::Flow;
+  /// An explicitly chosen iterative solver that does not reach its tolerance: solve again with
+  /// UMFPACK (LinearSolveInfo::fallback) instead of throwing.
+  bool fallback_direct = true;
+};
+
+struct DWRResult {
+  int p = 0;                     ///< degree of the primal solution
+  int p_fine = 0;                ///< p + 1
+  long long dofs = 0;            ///< coarse DOFs  #cells (p+1)^2
+  long long fine_dofs = 0;       ///< fine DOFs    #cells (p+2)^2
+  Eigen::VectorXd psi;           ///< fine adjoint (fine_dofs)
+  Eigen::VectorXd residual;      ///< R_h(u_h^H) (fine_dofs)
+  std::vector<double> eta;       ///< per cell |psi_k^T R_k|  (eq. 2.27)
+  std::vector<double> eta_signed;///< per cell -psi_k^T R_k (sums to the estimate)
+  double functional = 0;         ///< J_H(u_H) = J(u_h^H)
+  double functional_exact = 0;   ///< J(u) from the case's exact solution
+  double functional_error = 0;   ///< J(u) - J_H(u_H)
+  double estimate = 0;           ///< -psi^T R_h(u_h^H), estimate of functional_error (eq. 2.26)
+  double sum_eta = 0;            ///< sum_k eta_k >= |estimate| (eq. 2.27)
+  double effectivity = 0;        ///< estimate / functional_error (NaN when the error is 0)
+  double corrected = 0;          ///< adjoint-corrected functional J_H(u_H) + estimate
+  LinearSolveInfo solve;         ///< adjoint linear solve (method, iterations, residual)
+  std::vector<std::pair<std::string, double>> timings;  ///< wall seconds per phase, in order
+};
+
+/// Computes the DWR estimate for the degree-p DG vector U (#cells (p+1)^2) on `mesh` for case
+/// `cs`. Throws InputError when the case has no functional or names a boundary the mesh lacks,
+/// or when U has the wrong size; NumericalError when the adjoint solve fails.
+DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U, int p,
+                      const AdjointOptions& opt = {});
+
+/// Solves the adjoint system A^T psi = g for the fine DG matrix A (blocks = cells of `mesh`,
+/// degree pf) with opt.solver, the Flow/Mesh elimination order for advection c and, for
+/// gmres-2level, the mesh's continuous bilinear coarse space. Falls back to UMFPACK as
+/// opt.fallback_direct says; throws NumericalError otherwise.
+Eigen::VectorXd solve_adjoint(const BlockSparseMatrix& A, const Eigen::VectorXd& g, const Mesh& mesh, int pf,
+                              const Eigen::Vector2d& c, bool pure_advection, const AdjointOptions& opt,
+                              LinearSolveInfo* info = nullptr);
+
+/// The degree-p DG solution stored in `mesh` as the CellNodeField `field` (dgsolve's "u"), as a
+/// coefficient vector (#cells (p+1)^2). Throws InputError("PATH: ...") when the field is missing
+/// (naming the fields present), is not a scalar tensor-GLL DG field of degree >= 1, does not cover
+/// every cell, or holds a non-finite value.
+Eigen::VectorXd read_solution_field(const Mesh& mesh, const std::string& field, const std::string& path, int& p);
+
+}  // namespace quadapt

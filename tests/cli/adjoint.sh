@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# CLI test of `adjoint`: DWR of a dgsolve output on a conforming and a 2:1 non-conforming mesh
+# (report figures, the 'dwr' and 'psi' fields, effectivity on a smooth case), solver agreement,
+# and bad input (exit 2, one line naming the file, nothing written).
+set -euo pipefail
+SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+BIN=${QUADAPT_BIN_DIR:-}
+[ -n "$BIN" ] && PATH="$BIN:$PATH"
+for t in adjoint dgsolve refine; do command -v $t >/dev/null || { echo "SKIPPED: $t not built"; exit 0; }; done
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+python3 "$SRC/tests/golden/refine/make_square.py" 8 "$T/sq8.msh" bare
+# Smooth case whose functional boundary (x = 1, natural) meets the Dirichlet sides where u = 0.
+cat >"$T/smooth.json" <<'EOF'
+{"exact": "sin(pi*y)*(exp(x) + 0.5*cos(2*x-y))", "diffusion": [[0.3, 0.1], [0.1, 0.5]],
+ "advection": [1.0, -0.7], "dirichlet": ["left", "top", "bottom"], "functional": {"boundary": "right"}}
+EOF
+
+# Checks a DWR output: report keys and figures, fields in the mesh. check DWR.msh P CELLS
+check() {
+  python3 - "$@" <<'EOF'
+import json, math, re, sys
+msh, p, cells = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+r = json.load(open(msh[:-4] + ".json"))
+for k in ["functional", "functional_exact", "functional_error", "functional_error_signed",
+          "functional_error_estimate", "sum_eta", "effectivity", "functional_corrected", "p", "p_fine",
+          "dofs", "fine_dofs", "solver", "solver_iterations", "timings", "time_s"]:
+    assert k in r, "report lacks " + k
+assert r["p"] == p and r["p_fine"] == p + 1 and r["cells"] == cells, r
+assert r["fine_dofs"] == cells * (p + 2) ** 2 and r["dofs"] == cells * (p + 1) ** 2
+assert abs(r["functional_error_signed"] - (r["functional_exact"] - r["functional"])) <= 1e-15
+assert abs(r["functional_error_estimate"]) <= r["sum_eta"] * (1 + 1e-12)
+assert 0.8 <= r["effectivity"] <= 1.25, "effectivity %g" % r["effectivity"]
+for ph in ["read", "fine_assemble", "adjoint_solve", "write"]:
+    assert ph in r["timings"], "timing of " + ph
+# Fields: 'dwr' (one value per cell, sums to sum_eta), 'psi' of degree p+1, 'u' kept.
+text = open(msh).read()
+views = {}
+for kind, body in re.findall(r"\$(ElementData|ElementNodeData)\n(.*?)\$End\1", text, re.S):
+    lines = body.split("\n")
+    ns = int(lines[0]); name = lines[1].strip('"')
+    nr = int(lines[1 + ns]); ni = int(lines[2 + ns + nr])
+    ints = [int(x) for x in lines[3 + ns + nr: 3 + ns + nr + ni]]
+    rows = [l.split() for l in lines[3 + ns + nr + ni:] if l.strip()]
+    views[name] = (kind, ints, rows)
+assert set(["u", "psi", "dwr"]) <= set(views), sorted(views)
+kind, ints, rows = views["dwr"]
+assert kind == "ElementData" and ints[1] == 1 and len(rows) == cells
+eta = [float(x[1]) for x in rows]
+assert min(eta) >= 0 and abs(sum(eta) - r["sum_eta"]) <= 1e-12 * r["sum_eta"], (sum(eta), r["sum_eta"])
+kind, ints, rows = views["psi"]
+assert kind == "ElementNodeData" and len(rows) == cells
+assert all(int(x[1]) == (p + 2) ** 2 for x in rows), "psi is not of degree p+1"
+assert all(math.isfinite(float(v)) for x in rows for v in x[2:])
+EOF
+}
+
+# --- conforming, p = 1 and 2
+for p in 1 2; do
+  dgsolve -q "$T/sq8.msh" -c "$T/smooth.json" -p $p -o "$T/sol$p.msh"
+  adjoint -q "$T/sol$p.msh" -c "$T/smooth.json" -o "$T/dwr$p.msh"
+  check "$T/dwr$p.msh" $p 64 || fail "conforming p=$p"
+done
+
+# --- the other solvers give the same estimate
+for s in umfpack gmres-bilu0; do
+  adjoint -q "$T/sol2.msh" -c "$T/smooth.json" -o "$T/dwr2-$s.msh" --solver $s
+  python3 - "$T/dwr2.json" "$T/dwr2-$s.json" <<'EOF' || fail "solver $s differs"
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+for k in ["functional_error_estimate", "sum_eta"]:
+    assert abs(a[k] - b[k]) <= 1e-8 * abs(a[k]), (k, a[k], b[k])
+EOF
+done
+
+# --- non-conforming: fixed-fraction refinement by the DWR itself (the goal-oriented baseline)
+refine -q "$T/dwr2.msh" --by dwr --fraction 0.3 -o "$T/nc.msh"
+cells=$(python3 -c "import json; print(json.load(open('$T/nc.json'))['cells'])")
+[ "$(python3 -c "import json; print(json.load(open('$T/nc.json'))['hanging_nodes'] > 0)")" = True ] || fail "no hanging nodes"
+dgsolve -q "$T/nc.msh" -c "$T/smooth.json" -p 2 -o "$T/ncsol.msh"
+adjoint -q "$T/ncsol.msh" -c "$T/smooth.json" -o "$T/ncdwr.msh"
+check "$T/ncdwr.msh" 2 "$cells" || fail "non-conforming"
+
+# --- bad input: exit 2, one line naming the file and the problem, nothing written
+expect_fail() {  # expect_fail PATTERN ARGS...
+  local pat=$1; shift
+  rm -f "$T/bad.msh" "$T/bad.json"
+  set +e
+  adjoint -q "$@" -o "$T/bad.msh" 2>"$T/err"
+  local rc=$?
+  set -e
+  [ $rc = 2 ] || fail "adjoint $* exited $rc, expected 2: $(cat "$T/err")"
+  [ "$(wc -l <"$T/err")" -le 1 ] || fail "more than one line: $(cat "$T/err")"
+  grep -q -- "$pat" "$T/err" || fail "message '$(cat "$T/err")' lacks '$pat'"
+  [ ! -e "$T/bad.msh" ] && [ ! -e "$T/bad.json" ] || fail "adjoint $* wrote an output"
+  ls "$T" | grep -q '\.tmp' && fail "temporary file left behind" || true
+}
+echo '{"exact": "x*y", "advection": [1, 0.5]}' >"$T/nofun.json"
+echo '{"exact": "x*y", "advection": [1, 0.5], "functional": {"boundary": "outlet"}}' >"$T/outlet.json"
+echo '{"exact": "x*y", "advection": [1, 0.5], "dirichlet": ["inlet"], "functional": {"boundary": "right"}}' >"$T/inlet.json"
+expect_fail "sq8.msh.*no DG solution field 'u'" "$T/sq8.msh" -c "$T/smooth.json"
+expect_fail "nofun.json.*no functional" "$T/sol1.msh" -c "$T/nofun.json"
+expect_fail "outlet.json.*'outlet'" "$T/sol1.msh" -c "$T/outlet.json"
+expect_fail "inlet.json.*'inlet'" "$T/sol1.msh" -c "$T/inlet.json"
+expect_fail "no DG solution field 'v'" "$T/sol1.msh" -c "$T/smooth.json" --field v
+expect_fail "unknown linear solver" "$T/sol1.msh" -c "$T/smooth.json" --solver magic
+expect_fail "ordering" "$T/sol1.msh" -c "$T/smooth.json" --ordering sideways
+# never overwrite an input
+cp "$T/sol1.msh" "$T/keep.msh"
+set +e
+adjoint -q "$T/sol1.msh" -c "$T/smooth.json" -o "$T/sol1.msh" 2>"$T/err"
+rc=$?
+set -e
+[ $rc = 2 ] || fail "overwriting the input exited $rc"
+cmp -s "$T/sol1.msh" "$T/keep.msh" || fail "the input was modified"
+echo "adjoint CLI: OK"

@@ -1,0 +1,136 @@
+// adjoint SOL.msh -c CASE.json -o DWR.msh: dual-weighted residual of the case's boundary
+// functional on the degree-(p+1) space (thesis eqs. 2.25-2.27). See docs/adjoint.md.
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "adjoint/dwr.hpp"
+#include "case/case.hpp"
+#include "cli/tool.hpp"
+#include "dg/solve.hpp"
+#include "io/msh.hpp"
+#include "mesh/validate.hpp"
+
+int main(int argc, char** argv) {
+  using namespace quadapt;
+  Tool tool("adjoint", "Dual-weighted residual (DWR) estimate of the functional error on the p+1 space",
+            "Reads the degree-p DG solution 'u' of dgsolve (SOL), injects it into the degree-(p+1) space on "
+            "the same mesh, evaluates the fine residual R_h(u_h^H) and the fine Jacobian A_h there, solves "
+            "the fine adjoint A_h^T psi = (dJ/du)^T at the injected solution (J = integral of u^2 over the "
+            "case's functional boundary; thesis eq. 2.25) and writes DWR = SOL's mesh and fields plus the "
+            "per-cell DWR eta_k = |psi_k^T R_k| as the cell field 'dwr' (eq. 2.27) and the adjoint as the "
+            "degree-(p+1) DG field 'psi'. The report DWR.json holds functional (J_H(u_H)), "
+            "functional_exact, functional_error (|J(u) - J_H(u_H)|), functional_error_signed, "
+            "functional_error_estimate (-psi^T R, the estimate of J(u) - J_H(u_H), eq. 2.26), sum_eta, "
+            "effectivity (estimate / signed error), functional_corrected (J_H + estimate), the solver and "
+            "the wall time of every phase. Use the same --penalty as dgsolve.");
+  std::string in, out, case_path, field = "u", solver = "auto", ordering = "flow";
+  AdjointOptions opt;
+  bool no_fallback = false;
+  auto& app = tool.app();
+  app.add_option("SOL", in, "dgsolve output (.msh) with the DG field 'u'")->required()->check(CLI::ExistingFile);
+  app.add_option("-c,--case", case_path, "Case file (.json) with a functional {\"boundary\": NAME}")
+      ->required()
+      ->check(CLI::ExistingFile);
+  app.add_option("-o,--output", out, "Output mesh with the fields 'dwr' and 'psi' (.msh); report beside it as .json")
+      ->required();
+  app.add_option("--field", field, "Name of the DG solution field in SOL")->capture_default_str();
+  app.add_option("--solver", solver,
+                 "Adjoint linear solver: auto (gmres-2level with diffusion, gmres-bilu0 for pure advection, "
+                 "then umfpack if they do not converge; docs/adjoint.md), gmres-2level, gmres-bilu0, "
+                 "bicgstab-bilu0, gmres-bjacobi, bicgstab-ilut, umfpack, sparselu")
+      ->capture_default_str();
+  app.add_option("--rtol", opt.solver.rtol, "Relative residual tolerance of iterative solvers")->capture_default_str();
+  app.add_option("--max-iterations", opt.solver.max_iterations, "Iteration limit of iterative solvers")
+      ->capture_default_str();
+  app.add_flag("--no-fallback", no_fallback,
+               "Fail instead of falling back to UMFPACK when the iterative solver does not converge");
+  app.add_option("--ordering", ordering,
+                 "Elimination order of the block ILU(0) of the adjoint solve: flow (downstream first) or mesh")
+      ->capture_default_str();
+  app.add_option("--penalty", opt.dg.penalty_factor, "SIPG penalty factor, as given to dgsolve")
+      ->capture_default_str();
+
+  return tool.run(argc, argv, [&] {
+    auto start = std::chrono::steady_clock::now();
+    tool.input(in);
+    tool.input(case_path);
+    tool.output(out);
+    opt.solver.kind = parse_linear_solver(solver);
+    if (ordering == "flow")
+      opt.ordering = AdjointOrdering::Flow;
+    else if (ordering == "mesh")
+      opt.ordering = AdjointOrdering::Mesh;
+    else
+      throw InputError("", "--ordering '" + ordering + "': expected flow or mesh");
+    opt.fallback_direct = !no_fallback;
+    tool.option("solver", linear_solver_name(opt.solver.kind));
+
+    Mesh mesh;
+    Case cs;
+    Eigen::VectorXd U;
+    int p = 0;
+    {
+      auto ph = tool.phase("read");
+      mesh = read_msh(in);
+      ValidateOptions v;
+      v.require = CellKind::Quads;
+      validate_mesh(mesh, in, v);
+      U = read_solution_field(mesh, field, in, p);
+      cs = load_case(case_path);
+      if (!cs.has_functional())
+        throw InputError(case_path, "the case has no functional; add \"functional\": {\"boundary\": NAME}");
+      check_case_boundaries(cs, mesh);
+    }
+    tool.log(std::to_string(mesh.num_cells()) + " cells, p = " + std::to_string(p) + " -> fine p = " +
+             std::to_string(p + 1) + ", " + std::to_string(static_cast<long long>(mesh.num_cells()) * (p + 2) * (p + 2)) +
+             " fine dofs");
+
+    DWRResult r = compute_dwr(mesh, cs, U, p, opt);
+    auto& rep = tool.report();
+    for (const auto& [name, t] : r.timings) rep["timings"][name] = t;
+    tool.log("adjoint solved with " + r.solve.solver + " (" + std::to_string(r.solve.iterations) +
+             " iterations); estimate " + std::to_string(r.estimate) + ", true error " +
+             std::to_string(r.functional_error));
+
+    {
+      auto ph = tool.phase("write");
+      CellField dwr;
+      dwr.name = "dwr";
+      dwr.ncomp = 1;
+      dwr.values = r.eta;
+      mesh.set_field(std::move(dwr));
+      mesh.set_field(make_dg_field(r.psi, p + 1, mesh.num_cells(), "psi"));
+      write_msh(mesh, out);
+    }
+    auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+    rep["case"] = case_path;
+    if (!cs.name.empty()) rep["case_name"] = cs.name;
+    rep["functional_boundary"] = cs.functional_boundary;
+    rep["cells"] = mesh.num_cells();
+    rep["p"] = r.p;
+    rep["p_fine"] = r.p_fine;
+    rep["dofs"] = r.dofs;
+    rep["fine_dofs"] = r.fine_dofs;
+    rep["functional"] = r.functional;
+    rep["functional_exact"] = r.functional_exact;
+    rep["functional_error"] = std::abs(r.functional_error);
+    rep["functional_error_signed"] = r.functional_error;
+    rep["functional_error_estimate"] = r.estimate;
+    rep["sum_eta"] = r.sum_eta;
+    rep["effectivity"] = num(r.effectivity);
+    rep["functional_corrected"] = r.corrected;
+    rep["functional_corrected_error"] = std::abs(r.functional_exact - r.corrected);
+    double emax = 0;
+    for (double e : r.eta) emax = std::max(emax, e);
+    rep["eta_max"] = emax;
+    rep["residual_norm"] = r.residual.norm();
+    rep["solver"] = r.solve.solver;
+    rep["solver_iterations"] = r.solve.iterations;
+    rep["solver_relative_residual"] = r.solve.relative_residual;
+    rep["solver_fallback"] = r.solve.fallback;
+    rep["solver_setup_s"] = r.solve.setup_seconds;
+    rep["solver_solve_s"] = r.solve.solve_seconds;
+    rep["time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  });
+}
