@@ -8,7 +8,8 @@
 #
 # Every input is checked, and every tool the method needs is looked up, BEFORE any work starts.
 # Step K lives in DIR/step-K/: mesh.msh (its mesh), sol.msh (dgsolve), then per method
-# shape.msh (estimate-frame), dwr.msh (adjoint, goal mode), frame.msh (size-solve), tri.msh
+# shape.msh (estimate-frame), indicator.msh (fixed-fraction, FF_BY=A1h), dwr.msh (adjoint, goal
+# mode), frame.msh (size-solve), tri.msh
 # (lpcvt), quad.msh (recombine | bamgquad), adapted.msh (quadsmooth | refine) = the next mesh,
 # each with its JSON report beside it (.json) and the tool's stderr in TOOL.log.
 # Resume: every tool writes atomically, and a tool is skipped when its output and report exist
@@ -81,7 +82,7 @@ is_uint "$SEED" || die "SEED='$SEED': must be a non-negative integer"
 case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
 if [ -z "$FF_BY" ]; then
-  if [ "$MODE" = goal ]; then FF_BY=dwr; else FF_BY=A1; fi
+  if [ "$MODE" = goal ]; then FF_BY=dwr; else FF_BY=A1h; fi
 fi
 
 # tools this loop needs
@@ -201,8 +202,13 @@ while :; do
           refine "$d/dwr.msh" --fraction "$FRACTION" --by "$FF_BY" -o "$d/adapted.msh"
       else
         run_tool "$d" estimate-frame "$d/shape.msh" "$d/sol.msh" -- estimate-frame "$d/sol.msh" -o "$d/shape.msh"
-        run_tool "$d" refine "$d/adapted.msh" "$d/shape.msh" -- \
-          refine "$d/shape.msh" --fraction "$FRACTION" --by "$FF_BY" -o "$d/adapted.msh"
+        ind="$d/shape.msh"
+        if [ "$FF_BY" = A1h ]; then  # A1 |K|^((p+1)/2), the thesis solver's indicator (ff-indicator.py)
+          ind="$d/indicator.msh"
+          run_tool "$d" ff-indicator "$ind" "$d/shape.msh" -- "$PY" "$here/ff-indicator.py" "$d/shape.msh" "$P" -o "$ind"
+        fi
+        run_tool "$d" refine "$d/adapted.msh" "$ind" -- \
+          refine "$ind" --fraction "$FRACTION" --by "$FF_BY" -o "$d/adapted.msh"
       fi ;;
     lpcvt|bamg)
       run_tool "$d" estimate-frame "$d/shape.msh" "$d/sol.msh" -- estimate-frame "$d/sol.msh" -o "$d/shape.msh"
