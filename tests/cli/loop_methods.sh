@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# One-step loops of every adaptive method through Makefile.cases (feature: fixed-fraction, lpcvt,
+# bamg; goal: fixed-fraction, lpcvt) on the smooth case from an 8x8 grid: each step's files, the
+# table's tool columns, the DWR estimate in goal mode, and a resume after deleting a middle file.
+# Each method SKIPS (with a line "SKIPPED: METHOD/MODE: <tool> not built") while a tool is missing.
+set -euo pipefail
+SRC="${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}"
+BIN="${QUADAPT_BIN_DIR:-$SRC/build/bin}"
+export PATH="$BIN:$PATH"
+command -v dgsolve >/dev/null || { echo "SKIPPED: dgsolve not built"; exit 0; }
+command -v gmsh >/dev/null || { echo "SKIPPED: gmsh (the program) not installed"; exit 0; }
+PY=/usr/bin/python3; [ -x "$PY" ] || PY=python3
+T="$(mktemp -d)"; trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+gmsh -2 -format msh41 -setnumber N 8 -o "$T/sq8.msh" "$SRC/examples/geometry/unit_square.geo" >/dev/null 2>&1 \
+  || fail "gmsh could not mesh the square"
+
+ran=0
+run() {  # run METHOD MODE TOOLS...: one adaptation, then checks
+  local method="$1" mode="$2"; shift 2
+  local t
+  for t in "$@"; do
+    command -v "$t" >/dev/null || { echo "SKIPPED: $method/$mode: $t not built"; return 0; }
+  done
+  local out="$T/$method-$mode"
+  make --no-print-directory -f "$SRC/Makefile.cases" loop BIN="$BIN" CASE="$SRC/examples/cases/smooth.json" \
+    MESH="$T/sq8.msh" P=1 METHOD="$method" MODE="$mode" STEPS=1 OUT="$out" PICTURES=no > "$out.log" 2>&1 \
+    || { cat "$out.log" >&2; fail "$method/$mode loop failed"; }
+  [ -s "$out/step-0/adapted.msh" ] && [ -s "$out/step-1/sol.msh" ] || fail "$method/$mode: step files missing"
+  "$PY" - "$out/convergence.csv" "$method" "$mode" <<'PYEOF' || fail "$method/$mode: table"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+method, mode = sys.argv[2], sys.argv[3]
+assert len(rows) == 2, rows
+r0 = rows[0]
+need = {"fixed-fraction": ["t_refine"], "lpcvt": ["t_size_solve", "t_lpcvt", "t_recombine", "t_quadsmooth"],
+        "bamg": ["t_size_solve", "t_bamgquad"]}[method]
+if method != "fixed-fraction" or mode == "feature":
+    need += ["t_estimate_frame"]
+if mode == "goal":
+    need += ["t_adjoint", "functional_error_estimate"]
+    assert rows[1]["functional_error_estimate"] != "", "the final step has no DWR estimate"
+for c in need:
+    assert r0[c] != "", "%s empty in step 0" % c
+if method in ("lpcvt", "bamg"):
+    # complexity honesty (DESIGN.md section 4): the new mesh's DOFs near size-solve's target
+    tc, dofs = float(r0["target_complexity"]), float(rows[1]["dofs"])
+    assert 0.6 < dofs / tc < 1.6, "DOFs %g vs target %g" % (dofs, tc)
+PYEOF
+  ran=$((ran + 1))
+}
+run fixed-fraction feature estimate-frame refine
+run lpcvt feature estimate-frame size-solve lpcvt recombine quadsmooth
+run bamg feature estimate-frame size-solve bamgquad quadsmooth
+run fixed-fraction goal adjoint refine
+run lpcvt goal estimate-frame adjoint size-solve lpcvt recombine quadsmooth
+
+# resume in the middle of a step: delete lpcvt's triangles -> lpcvt, recombine, quadsmooth and the
+# step-1 solve run again, nothing before them
+if [ -d "$T/lpcvt-feature/step-0" ]; then
+  rm "$T/lpcvt-feature/step-0/tri.msh"
+  make --no-print-directory -f "$SRC/Makefile.cases" loop BIN="$BIN" CASE="$SRC/examples/cases/smooth.json" \
+    MESH="$T/sq8.msh" P=1 METHOD=lpcvt MODE=feature STEPS=1 OUT="$T/lpcvt-feature" PICTURES=no > "$T/resume.log" 2>&1 \
+    || { cat "$T/resume.log" >&2; fail "resume failed"; }
+  for t in lpcvt recombine quadsmooth; do grep -q "step-0: $t " "$T/resume.log" || fail "resume: $t not rerun"; done
+  grep -q "step-1: dgsolve " "$T/resume.log" || fail "resume: step-1 solve not rerun"
+  for t in dgsolve estimate-frame size-solve; do
+    grep -q "step-0: $t " "$T/resume.log" && fail "resume: step-0 $t rerun"
+  done
+fi
+echo "loop methods CLI: $ran loops checked"
