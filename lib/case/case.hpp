@@ -71,6 +71,12 @@ class ExactSolution {
   /// out[0..3] = u, u_x, u_y, S at (x, y); scratch holds scratch_size() doubles (per thread).
   void eval(double x, double y, double* out, double* scratch) const { prog_.eval(x, y, out, scratch); }
   int scratch_size() const { return prog_.scratch_size(); }
+  /// u alone (cheaper: no derivatives); scratch of scratch_size() doubles suffices.
+  double eval_u(double x, double y, double* scratch) const {
+    double v;
+    prog_u_.eval(x, y, &v, scratch);
+    return v;
+  }
   /// Convenience (allocating) single-value evaluations.
   double u(double x, double y) const;
   double source(double x, double y) const;
@@ -82,7 +88,7 @@ class ExactSolution {
 
  private:
   Expr u_, ux_, uy_, s_;
-  ExprProgram prog_;
+  ExprProgram prog_, prog_u_;
 };
 
 }  // namespace quadapt

@@ -209,7 +209,7 @@ void BlockILU0::compute(const BlockSparseMatrix& A, const std::vector<int>& orde
       for (long long k = rs[I]; k < diag_[I]; ++k) {
         const int K = cols[k];
         Eigen::Map<Mat> LIK(LU_.block(k), nb, nb);
-        tmp.noalias() = LIK * Eigen::Map<const Mat>(LU_.block(diag_[K]), nb, nb);  // diagonal = inv(U_KK)
+        tmp.noalias() = LIK.lazyProduct(Eigen::Map<const Mat>(LU_.block(diag_[K]), nb, nb));  // diag = inv(U_KK)
         LIK = tmp;
         // Row I -= L_IK * (row K beyond its diagonal), restricted to row I's pattern.
         long long a = k + 1, aend = rs[I + 1];
@@ -218,7 +218,7 @@ void BlockILU0::compute(const BlockSparseMatrix& A, const std::vector<int>& orde
           while (a < aend && cols[a] < J) ++a;
           if (a == aend) break;
           if (cols[a] == J)
-            Eigen::Map<Mat>(LU_.block(a), nb, nb).noalias() -= LIK * Eigen::Map<const Mat>(LU_.block(b), nb, nb);
+            Eigen::Map<Mat>(LU_.block(a), nb, nb).noalias() -= LIK.lazyProduct(Eigen::Map<const Mat>(LU_.block(b), nb, nb));
         }
       }
       Eigen::Map<Mat> DI(LU_.block(diag_[I]), nb, nb);
@@ -228,7 +228,7 @@ void BlockILU0::compute(const BlockSparseMatrix& A, const std::vector<int>& orde
     }
   });
   if (single_precision) {
-    const std::vector<double>& v = LU_.values();
+    const HugeVector<double>& v = LU_.values();
     single_.resize(v.size());
 #pragma omp parallel for schedule(static)
     for (long long i = 0; i < static_cast<long long>(v.size()); ++i) single_[i] = static_cast<float>(v[i]);

@@ -8,6 +8,8 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "dg/huge_pages.hpp"
+
 namespace quadapt {
 
 class BlockSparseMatrix {
@@ -36,8 +38,8 @@ class BlockSparseMatrix {
   const double* block(long long k) const { return values_.data() + k * nb_ * nb_; }
   double* block(long long k) { return values_.data() + k * nb_ * nb_; }
   /// All block values (num_blocks * nb * nb); release_values() frees them.
-  const std::vector<double>& values() const { return values_; }
-  void release_values() { std::vector<double>().swap(values_); }
+  const HugeVector<double>& values() const { return values_; }
+  void release_values() { HugeVector<double>().swap(values_); }
   /// Index k of block (I, J), or -1.
   long long find(int I, int J) const;
 
@@ -49,7 +51,7 @@ class BlockSparseMatrix {
   int nb_ = 0, nbr_ = 0;
   std::vector<long long> row_start_;
   std::vector<int> cols_;
-  std::vector<double> values_;
+  HugeVector<double> values_;
 };
 
 /// Block incomplete LU with zero fill (ILU(0) on the block pattern, dense blocks) in the
@@ -69,7 +71,7 @@ class BlockILU0 {
 
  private:
   BlockSparseMatrix LU_;                ///< L below, U above the diagonal; diagonal = inv(U_II)
-  std::vector<float> single_;           ///< LU_'s values in single precision (then LU_ has none)
+  HugeVector<float> single_;            ///< LU_'s values in single precision (then LU_ has none)
   std::vector<long long> diag_;         ///< index of the diagonal block per row
   std::vector<int> order_;              ///< elimination order (empty = natural)
 };

@@ -436,7 +436,6 @@ std::vector<double> DGDiscretization::cell_l2_errors_squared(const Eigen::Vector
 #pragma omp parallel
   {
     std::vector<double> scratch(exact_->scratch_size());
-    double ex[ExactSolution::NUM_OUTPUTS];
     MatrixXd Uq(ne, ne);
 #pragma omp for schedule(static)
     for (int c = 0; c < nc; ++c) {
@@ -449,8 +448,7 @@ std::vector<double> DGDiscretization::cell_l2_errors_squared(const Eigen::Vector
           Vec2 t1, t2;
           double det = G.jac(ge.x[q1], ge.x[q2], t1, t2);
           Vec2 x = G.map(ge.x[q1], ge.x[q2]);
-          exact_->eval(x.x(), x.y(), ex, scratch.data());
-          double d = Uq(q1, q2) - ex[ExactSolution::U];
+          double d = Uq(q1, q2) - exact_->eval_u(x.x(), x.y(), scratch.data());
           s += ge.w[q1] * ge.w[q2] * det * d * d;
         }
       err[c] = s;
@@ -549,14 +547,12 @@ Eigen::VectorXd DGDiscretization::interpolate_exact() const {
 #pragma omp parallel
   {
     std::vector<double> scratch(exact_->scratch_size());
-    double ex[ExactSolution::NUM_OUTPUTS];
 #pragma omp for schedule(static)
     for (int c = 0; c < nc; ++c)
       for (int j = 0; j < n1; ++j)
         for (int i = 0; i < n1; ++i) {
           Vec2 x = I.geo[c].map(I.gll[i], I.gll[j]);
-          exact_->eval(x.x(), x.y(), ex, scratch.data());
-          U[static_cast<long long>(c) * nb_ + i + n1 * j] = ex[ExactSolution::U];
+          U[static_cast<long long>(c) * nb_ + i + n1 * j] = exact_->eval_u(x.x(), x.y(), scratch.data());
         }
   }
   return U;
