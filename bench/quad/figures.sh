@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Figures of docs/quad-quality.md: on every PHiLiP frame input_<case>_3.msh (PHiLiP's size
+# convention) and on the eq. 6.1 saddle sampled on a 16x16 background (quadapt convention),
+#   A = bamgquad FRAME                         (BAMG + Blossom + split)
+#   B = lpcvt FRAME | recombine | quadsmooth   (the thesis's path)
+# plus the thesis's own output_<case>_2.msh; meshquality (physical, and in the frame's metric).
+# usage: figures.sh BIN SHARED OUT
+set -euo pipefail
+BIN=$1; SHARED=$2; OUT=$3
+SRC=$(cd "$(dirname "$0")/../.." && pwd)
+FIX=$SHARED/reference/philip-fixtures
+mkdir -p "$OUT"
+export PATH="$BIN:$PATH"
+cases="ss15_fb_p1 ss15_fb_p2 ss15_adj_p1 ss15_adj_p2 bl15_fb_p2 bl15_fb_p3 bl15_adj_p2 bl15_adj_p3"
+for c in $cases; do
+  F=$FIX/input_${c}_3.msh
+  echo "== $c" >&2
+  bamgquad -q "$F" --convention philip -o "$OUT/${c}_bamg.msh"
+  quadsmooth -q "$OUT/${c}_bamg.msh" -o "$OUT/${c}_bamg_s.msh"
+  lpcvt -q "$F" --convention philip -o "$OUT/${c}_lpcvt_tri.msh"
+  recombine -q "$OUT/${c}_lpcvt_tri.msh" -o "$OUT/${c}_lpcvt_q.msh"
+  quadsmooth -q "$OUT/${c}_lpcvt_q.msh" -o "$OUT/${c}_lpcvt.msh"
+  # PHiLiP's sizes are full edges: measure against 2 Vinv so that a target edge has metric length 1
+  python3 - "$F" "$OUT/${c}_frame_x2.msh" <<'PY'
+import sys
+L = open(sys.argv[1]).read().split("\n"); out = []; i = 0
+while i < len(L):
+    out.append(L[i])
+    if L[i] == "$ElementData":
+        nt = int(L[i + 1]); out += L[i + 1:i + 2 + nt]; i += 2 + nt
+        nr = int(L[i]); out += L[i:i + 1 + nr]; i += 1 + nr
+        ni = int(L[i]); ints = L[i + 1:i + 1 + ni]; out += L[i:i + 1 + ni]; i += 1 + ni
+        for k in range(int(ints[2])):
+            f = L[i + k].split(); out.append(" ".join([f[0]] + [repr(2 * float(x)) for x in f[1:]]))
+        i += int(ints[2])
+        continue
+    i += 1
+open(sys.argv[2], "w").write("\n".join(out))
+PY
+  for m in bamg bamg_s lpcvt; do meshquality "$OUT/${c}_$m.msh" --frame "$OUT/${c}_frame_x2.msh" > "$OUT/${c}_$m.mq.json"; done
+  meshquality "$FIX/output_${c}_2.msh" > "$OUT/${c}_thesis.mq.json"
+done
+# eq. 6.1 saddle, sampled at the centres of a 16x16 background on [-1.3, 1.3]^2, times 8
+python3 "$SRC/tests/cli/lpcvt_frame.py" "$OUT/saddle_frame.msh" --n 16 --kind saddle --box -1.3 1.3 -1.3 1.3 --factor 8
+bamgquad -q "$OUT/saddle_frame.msh" -o "$OUT/saddle_bamg.msh"
+quadsmooth -q "$OUT/saddle_bamg.msh" -o "$OUT/saddle_bamg_s.msh"
+lpcvt -q "$OUT/saddle_frame.msh" -o "$OUT/saddle_lpcvt_tri.msh"
+recombine -q "$OUT/saddle_lpcvt_tri.msh" -o "$OUT/saddle_lpcvt_q.msh"
+quadsmooth -q "$OUT/saddle_lpcvt_q.msh" -o "$OUT/saddle_lpcvt.msh"
+for m in bamg bamg_s lpcvt; do meshquality "$OUT/saddle_$m.msh" --frame "$OUT/saddle_frame.msh" > "$OUT/saddle_$m.mq.json"; done
+# pictures: one boundary-layer case, the three meshes
+if command -v rsvg-convert >/dev/null; then
+  c=bl15_fb_p2
+  meshplot -q "$FIX/output_${c}_2.msh" -o "$OUT/quad-${c}-thesis.png" --width 500 --title "thesis L_p-CVT (output_${c}_2)"
+  meshplot -q "$OUT/${c}_bamg.msh" -o "$OUT/quad-${c}-bamgquad.png" --width 500 --title "bamgquad (input_${c}_3)"
+  meshplot -q "$OUT/${c}_lpcvt.msh" -o "$OUT/quad-${c}-lpcvt.png" --width 500 --title "lpcvt+recombine+quadsmooth (input_${c}_3)"
+  meshplot -q "$OUT/saddle_bamg.msh" -o "$OUT/quad-saddle-bamgquad.png" --width 500 --title "bamgquad, eq. 6.1 x 8"
+  meshplot -q "$OUT/saddle_lpcvt.msh" -o "$OUT/quad-saddle-lpcvt.png" --width 500 --title "lpcvt+recombine+quadsmooth, eq. 6.1 x 8"
+fi
+python3 "$(dirname "$0")/table.py" "$OUT" $cases > "$OUT/table.md"
+cat "$OUT/table.md"
