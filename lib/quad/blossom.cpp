@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <string>
+#include <utility>
 #include <unordered_map>
 
 #include "core/error.hpp"
@@ -46,10 +48,17 @@ GmshAnswer run_gmsh(const Mesh& tri, const std::vector<std::vector<int>>& loops,
   GmshSession session;
   gmsh_call("Blossom-Quad recombination", [&] {
     gmsh::model::add("quadapt-recombine");
-    gmsh::option::setNumber("Mesh.RecombinationAlgorithm", opt.algorithm);
-    gmsh::option::setNumber("Mesh.RecombineOptimizeTopology", cleanup ? opt.optimize_topology : 0);
-    gmsh::option::setNumber("Mesh.Smoothing", cleanup ? opt.smoothing : 0);
-    gmsh::option::setNumber("Mesh.RecombineAll", 1);
+    // Options are global to Gmsh: set ours, restore the caller's at the end (nested sessions).
+    const std::vector<std::pair<std::string, double>> ours = {
+        {"Mesh.RecombinationAlgorithm", opt.algorithm},
+        {"Mesh.RecombineOptimizeTopology", cleanup ? opt.optimize_topology : 0},
+        {"Mesh.Smoothing", cleanup ? opt.smoothing : 0},
+        {"Mesh.RecombineAll", 1}};
+    std::vector<double> saved(ours.size());
+    for (size_t k = 0; k < ours.size(); ++k) {
+      gmsh::option::getNumber(ours[k].first, saved[k]);
+      gmsh::option::setNumber(ours[k].first, ours[k].second);
+    }
 
     // Geometry: geo points = boundary nodes (tag = node + 1), geo lines = boundary edges.
     for (size_t v = 0; v < tri.nodes.size(); ++v)
@@ -103,6 +112,7 @@ GmshAnswer run_gmsh(const Mesh& tri, const std::vector<std::vector<int>>& loops,
     gmsh::model::mesh::getNodes(node_tags, coords, param, -1, -1, false, false);
     gmsh::model::mesh::getElements(etypes, etags, enodes, 2, surf);
     gmsh::model::remove();
+    for (size_t k = 0; k < ours.size(); ++k) gmsh::option::setNumber(ours[k].first, saved[k]);
   });
 
   GmshAnswer ans;
