@@ -74,8 +74,14 @@ int gmres(const Op& A, const Op& Minv, const VectorXd& b, VectorXd& x, double rt
     for (int i = 0; i < j; ++i) x.noalias() += y[i] * Z[i];
     A(x, w);
     r = b - w;
+    const double previous = beta;
     beta = r.norm();
+    // Done at the tolerance, or within the accepted 10 x rtol when the Krylov estimate has
+    // already passed rtol (rounding floor of the true residual), or when a whole cycle no
+    // longer reduces the true residual (stagnation; the caller judges the result).
     if (beta <= rtol * bnorm || beta == 0) break;
+    if (beta <= 10 * rtol * bnorm && std::abs(g[j]) <= rtol * bnorm) break;
+    if (beta > 0.9 * previous) break;
   }
   res = beta / bnorm;
   return it;
