@@ -151,7 +151,10 @@ run_tool() {
   t0=$(date +%s%N)
   "$@" 2>"$dir/$logname.log" || rc=$?
   t1=$(date +%s%N)
-  if [ $rc -ne 0 ]; then
+  if [ $rc -eq 1 ] && [ -s "$out" ]; then
+    # exit 1 = the tool saved a valid output but reports a failure (e.g. not converged): go on
+    echo "loop: warning: step $(basename "$dir"): $logname: $(tail -n 1 "$dir/$logname.log")" >&2
+  elif [ $rc -ne 0 ]; then
     echo "loop: error: step $(basename "$dir"): $logname failed (exit $rc):" >&2
     tail -n 5 "$dir/$logname.log" | sed 's/^/    /' >&2
     echo "  full log: $dir/$logname.log" >&2
