@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
             "functional_error_estimate (-psi^T R, the estimate of J(u) - J_H(u_H), eq. 2.26), sum_eta, "
             "effectivity (estimate / signed error), functional_corrected (J_H + estimate), the solver and "
             "the wall time of every phase. Use the same --penalty as dgsolve.");
-  std::string in, out, case_path, field = "u", solver = "auto", ordering = "flow";
+  std::string in, out, case_path, field = "u", solver = "auto", ordering = "auto";
   AdjointOptions opt;
   bool no_fallback = false;
   auto& app = tool.app();
@@ -46,7 +46,8 @@ int main(int argc, char** argv) {
   app.add_flag("--no-fallback", no_fallback,
                "Fail instead of falling back to UMFPACK when the iterative solver does not converge");
   app.add_option("--ordering", ordering,
-                 "Elimination order of the block ILU(0) of the adjoint solve: flow (downstream first) or mesh")
+                 "Cell order of the adjoint solve (block sweep / block ILU(0)): auto (flow for pure advection, "
+                 "else mesh), flow (downstream first) or mesh")
       ->capture_default_str();
   app.add_option("--penalty", opt.dg.penalty_factor, "SIPG penalty factor, as given to dgsolve")
       ->capture_default_str();
@@ -57,12 +58,14 @@ int main(int argc, char** argv) {
     tool.input(case_path);
     tool.output(out);
     opt.solver.kind = parse_linear_solver(solver);
-    if (ordering == "flow")
+    if (ordering == "auto")
+      opt.ordering = AdjointOrdering::Auto;
+    else if (ordering == "flow")
       opt.ordering = AdjointOrdering::Flow;
     else if (ordering == "mesh")
       opt.ordering = AdjointOrdering::Mesh;
     else
-      throw InputError("", "--ordering '" + ordering + "': expected flow or mesh");
+      throw InputError("", "--ordering '" + ordering + "': expected auto, flow or mesh");
     opt.fallback_direct = !no_fallback;
     tool.option("solver", linear_solver_name(opt.solver.kind));
 

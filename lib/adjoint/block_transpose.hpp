@@ -9,4 +9,10 @@ namespace quadapt {
 /// A^T with the same block size; block rows sorted by column as BlockSparseMatrix requires.
 BlockSparseMatrix block_transpose(const BlockSparseMatrix& A);
 
+/// Replaces A by A^T in its own storage when its block pattern is structurally symmetric (as
+/// every DG matrix's face-neighbour pattern is): blocks (I, J) and (J, I) are swapped and
+/// transposed. No allocation — a fresh 100 MB buffer costs more in first-touch page faults than
+/// the copy itself. Returns false, leaving A unchanged, when the pattern is not symmetric.
+bool transpose_in_place(BlockSparseMatrix& A);
+
 }  // namespace quadapt

@@ -56,14 +56,15 @@ Eigen::VectorXd read_solution_field(const Mesh& mesh, const std::string& field, 
   return U;
 }
 
-Eigen::VectorXd solve_adjoint(const BlockSparseMatrix& A, const Eigen::VectorXd& g, const Mesh& mesh, int pf,
+Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, const Mesh& mesh, int pf,
                               const Eigen::Vector2d& c, bool pure_advection, const AdjointOptions& opt,
                               LinearSolveInfo* info) {
   const int nb = (pf + 1) * (pf + 1);
   if (A.block_size() != nb || A.block_rows() != mesh.num_cells() || g.size() != A.rows())
     throw Error("solve_adjoint: matrix / right-hand side do not match degree " + std::to_string(pf) + " on the mesh");
   LinearSolverOptions o = opt.solver;
-  if (opt.ordering == AdjointOrdering::Flow && o.block_order.empty()) o.block_order = downwind_order(mesh, -c);
+  const bool flow = opt.ordering == AdjointOrdering::Flow || (opt.ordering == AdjointOrdering::Auto && pure_advection);
+  if (flow && o.block_order.empty()) o.block_order = downwind_order(mesh, -c);
   // Pure advection in the downstream-first order: A^T is block lower triangular, one exact
   // block sweep solves it (adjoint/block_sweep.hpp).
   if (o.kind == LinearSolverKind::Auto && pure_advection && !o.block_order.empty()) {
@@ -80,7 +81,8 @@ Eigen::VectorXd solve_adjoint(const BlockSparseMatrix& A, const Eigen::VectorXd&
       return x;
     }
   }
-  const BlockSparseMatrix At = block_transpose(A);
+  if (!transpose_in_place(A)) A = block_transpose(A);
+  const BlockSparseMatrix& At = A;
   o.block_size = nb;
   o.pure_advection = pure_advection;
   const VertexCoarseSpace coarse = make_vertex_coarse_space(mesh, pf);
@@ -141,7 +143,7 @@ DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U
   r.functional_error = r.functional_exact - r.functional;
   sw.lap("residual_and_gradient");
 
-  r.psi = solve_adjoint(A, g, mesh, p + 1, cs.advection, cs.advection_only(), opt, &r.solve);
+  r.psi = solve_adjoint(std::move(A), g, mesh, p + 1, cs.advection, cs.advection_only(), opt, &r.solve);
   sw.lap("adjoint_solve");
 
   r.eta.resize(nc);

@@ -34,25 +34,35 @@
 
 namespace quadapt {
 
-/// Elimination order of the block ILU(0) (smoother) in the adjoint solve; it only matters for
-/// the preconditioner's quality under advection.
-///   Mesh:  the mesh's cell order.
+/// Cell order of the adjoint solve (the block sweep's visiting order, the block ILU(0)'s
+/// elimination order).
 ///   Flow:  downstream first (downwind_order of -c, lib/dg/solve.hpp): the adjoint of an upwind
 ///          scheme carries information against the flow, so in this order the transposed
-///          advection operator is (block) lower triangular and ILU(0) nearly exact.
-///          Same as Mesh when c = 0.
-enum class AdjointOrdering { Mesh, Flow };
+///          advection operator is (block) lower triangular — one exact block sweep for pure
+///          advection. Same as Mesh when c = 0.
+///   Mesh:  the mesh's cell order.
+///   Auto:  Flow for pure advection, Mesh with diffusion (measured: with diffusion the flow
+///          order saves no gmres-2level iteration and costs a permuted copy of the matrix).
+enum class AdjointOrdering { Auto, Mesh, Flow };
 
 struct AdjointOptions {
   DGOptions dg;                  ///< must match the primal solve's (penalty factor, quadrature)
   /// The adjoint linear solver (lib/dg/linear_solver.hpp); block_size, block_order, the coarse
-  /// space and pure_advection are filled in. Default auto: gmres-2level with diffusion, else
-  /// gmres-bilu0, then UMFPACK when they do not converge (measured, docs/adjoint.md).
-  LinearSolverOptions solver;
-  AdjointOrdering ordering = AdjointOrdering::Flow;
+  /// space and pure_advection are filled in. Default auto: one block sweep for pure advection
+  /// (adjoint/block_sweep.hpp), else gmres-2level, then gmres-bilu0, then UMFPACK when they do
+  /// not converge (measured, docs/adjoint.md). Default rtol 1e-10: the estimate's error is
+  /// r^T (u_h - u_h^H) for the adjoint residual r, i.e. at most rtol ||g|| ||u_h - u_h^H||.
+  LinearSolverOptions solver = default_solver();
+  AdjointOrdering ordering = AdjointOrdering::Auto;
   /// An explicitly chosen iterative solver that does not reach its tolerance: solve again with
   /// UMFPACK (LinearSolveInfo::fallback) instead of throwing.
   bool fallback_direct = true;
+
+  static LinearSolverOptions default_solver() {
+    LinearSolverOptions o;
+    o.rtol = 1e-10;
+    return o;
+  }
 };
 
 struct DWRResult {
@@ -85,7 +95,8 @@ DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U
 /// degree pf) with opt.solver, the Flow/Mesh elimination order for advection c and, for
 /// gmres-2level, the mesh's continuous bilinear coarse space. Falls back to UMFPACK as
 /// opt.fallback_direct says; throws NumericalError otherwise.
-Eigen::VectorXd solve_adjoint(const BlockSparseMatrix& A, const Eigen::VectorXd& g, const Mesh& mesh, int pf,
+/// A is taken by value (pass it with std::move to release it once it has been transposed).
+Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, const Mesh& mesh, int pf,
                               const Eigen::Vector2d& c, bool pure_advection, const AdjointOptions& opt,
                               LinearSolveInfo* info = nullptr);
 
