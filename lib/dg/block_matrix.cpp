@@ -187,6 +187,18 @@ void BlockSparseMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) c
   });
 }
 
+void BlockSparseMatrix::multiply_abs(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  y.resize(rows());
+  const int nb = nb_;
+#pragma omp parallel for schedule(static)
+  for (int I = 0; I < nbr_; ++I) {
+    Eigen::VectorXd acc = Eigen::VectorXd::Zero(nb);
+    for (long long k = row_start_[I]; k < row_start_[I + 1]; ++k)
+      acc.noalias() += CMapM(block(k), nb, nb).cwiseAbs() * x.segment(static_cast<Eigen::Index>(cols_[k]) * nb, nb).cwiseAbs();
+    y.segment(static_cast<Eigen::Index>(I) * nb, nb) = acc;
+  }
+}
+
 // ---------------------------------------------------------------------------- block ILU(0)
 
 void BlockILU0::compute(const BlockSparseMatrix& A, const std::vector<int>& order, bool single_precision) {

@@ -32,6 +32,8 @@ class BlockSparseMatrix {
 
   /// y = A x (parallel over block rows, deterministic).
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// y = |A| |x| (entrywise absolute values): the scale of the rounding error of A x.
+  void multiply_abs(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
   const std::vector<long long>& row_start() const { return row_start_; }
   const std::vector<int>& cols() const { return cols_; }

@@ -14,7 +14,9 @@
 //                  has diffusion and a coarse space is given, else gmres-bilu0 (with the block
 //                  order, e.g. downwind for advection); if that does not converge within
 //                  auto_max_iterations, the other iterative method, then umfpack.
-// Iterative methods stop at ||b - A x|| <= rtol ||b|| (true residual checked at the end).
+// Iterative methods stop at ||b - A x|| <= rtol ||b|| (true residual checked at the end), or when
+// the true residual is at the rounding level of A x: ||r|| <= 1000 eps || |A| |x| || (normwise
+// backward error; stretched meshes with steep data have such a floor near 1e-12).
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -32,7 +34,8 @@ enum class LinearSolverKind {
 struct LinearSolverOptions {
   LinearSolverKind kind = LinearSolverKind::Auto;
   int block_size = 1;        ///< dense block size of the block preconditioners ((p+1)^2 for DG)
-  double rtol = 1e-12;       ///< relative residual tolerance of the iterative methods
+  double rtol = 1e-14;       ///< relative residual tolerance of the iterative methods (a residual at
+                             ///< the rounding level of A x is accepted too)
   int max_iterations = 3000; ///< total Krylov iterations
   int restart = 80;          ///< GMRES restart length
   const VertexCoarseSpace* coarse = nullptr;  ///< coarse space of gmres-2level

@@ -52,18 +52,18 @@ TEST_CASE("dg_solve: report figures and the field u survive write_msh/read_msh e
   CHECK_THROWS_AS(make_dg_field(r.U, 2, m.num_cells()), InputError);
 }
 
-TEST_CASE("dg_solve: pure advection in downwind block order converges in one iteration") {
+TEST_CASE("dg_solve: pure advection in downwind block order: block ILU is exact (up to single precision)") {
   // Upwind DG couples a cell only to its upwind neighbours: with the cells sorted along c the
-  // matrix is block lower triangular and block ILU(0) is exact (up to the single-precision
-  // storage of its factors: one more iteration reaches 1e-12).
+  // matrix is block lower triangular and block ILU(0) is exact up to the single-precision
+  // storage of its factors: every iteration gains ~7 digits, 3 reach the default 1e-14.
   Case cs = load_case(std::string(QUADAPT_SOURCE_DIR) + "/examples/cases/sshock-advection.json");
   Mesh m = make_structured_quads(12, 12);
   DGSolveOptions opt;
   opt.p = 2;
   DGSolveResult r = dg_solve(m, cs, opt);
   CHECK(r.solve.solver == "gmres-bilu0");
-  CHECK(r.solve.iterations <= 2);
-  CHECK(r.solve.relative_residual < 1e-12);
+  CHECK(r.solve.iterations <= 3);
+  CHECK(r.solve.relative_residual < 1e-13);
   opt.solver.kind = LinearSolverKind::UmfPack;
   DGSolveResult d = dg_solve(m, cs, opt);
   CHECK((r.U - d.U).norm() < 1e-11 * d.U.norm());
