@@ -9,6 +9,7 @@
 #include "cli/tool.hpp"
 #include "core/atomic_file.hpp"
 #include "io/msh.hpp"
+#include "lpcvt/energy.hpp"
 #include "lpcvt/lpcvt.hpp"
 #include "lpcvt/quality.hpp"
 #include "lpcvt/triangulate.hpp"
@@ -61,11 +62,30 @@ int main(int argc, char** argv) {
   app.add_option("--grid", grid, "With --analytic: background grid size")->capture_default_str()->check(CLI::Range(1, 4096));
   app.add_option("--initial", opt.initial_points,
                  "Interior points to start from (default: the requested count for frames, 20 for --analytic)");
-  app.add_option("--init", init, "Initial distribution: density (frames' default) or uniform (--analytic's)")
-      ->check(CLI::IsMember({"density", "uniform"}));
+  app.add_option("--init", init,
+                 "Initial points: lattice (frames' default: the frame-aligned lattice grown from one seed), "
+                 "multilevel (coarse levels from density seeds, each finer level from the children of the "
+                 "coarser sites), density (random, by the metric's density) or uniform (random; --analytic's)")
+      ->check(CLI::IsMember({"lattice", "multilevel", "density", "uniform"}));
+  app.add_option("--coarse-points", opt.coarse_points, "Multilevel: interior points of the coarsest level, at least")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  double complexity = 0;
+  int degree = -1;
+  app.add_option("--complexity", complexity,
+                 "Target DOFs: rescale the frame uniformly so that the final all-quad mesh has "
+                 "complexity/(degree+1)^2 cells (PHiLiP's frame files are normalised and carry no size)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--degree", degree, "DG degree P for --complexity (cells = complexity/(P+1)^2)")->check(CLI::Range(0, 20));
+  bool no_exact = false;
+  app.add_flag("--no-exact-count", no_exact,
+               "Do not set the point count to the requested one (multilevel levels, before the final minimisation)");
   app.add_option("--max-cycles", opt.max_cycles, "Split/merge cycles at most")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--max-iterations", opt.lbfgs.max_iterations, "L-BFGS iterations per cycle at most")
       ->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_flag("--precondition", opt.lbfgs.precondition, "Scale every site's variables by its local frame");
+  app.add_option("--delta", opt.lbfgs.delta, "Stop when the energy falls by less than this (relative) over --past iterations")
+      ->capture_default_str();
+  app.add_option("--past", opt.lbfgs.past, "Iterations of the --delta test")->capture_default_str();
   app.add_option("--gtol", opt.lbfgs.gtol, "Gradient tolerance (per site, relative)")->capture_default_str();
   auto* olmin = app.add_option("--lmin", opt.split.lmin,
                                "Merge edges shorter than this (metric units, eq. 4.12; default 0.25, "
@@ -89,6 +109,8 @@ int main(int argc, char** argv) {
     }
     if (!(opt.split.lmin >= 0 && opt.split.lmax > opt.split.lmin))
       throw InputError("", "need 0 <= --lmin < --lmax");
+    if ((complexity > 0) != (degree >= 0)) throw InputError("", "--complexity and --degree go together");
+    opt.exact_count = !no_exact;
 
     std::unique_ptr<Background> bg;
     {
@@ -98,10 +120,12 @@ int main(int argc, char** argv) {
         double s = scale > 0 ? scale : 1.0;
         auto f = std::make_shared<SaddleMetric>();
         bg = std::make_unique<Background>(sampled ? Background::sampled(m, *f, s) : Background::analytic(m, f, s));
-        if (opt.initial_points < 0) opt.initial_points = 20;
+        if (opt.initial_points < 0 && (init.empty() || init == "uniform" || init == "density")) opt.initial_points = 20;
         if (!olmin->count()) opt.split.lmin = 0;
         if (!olmax->count()) opt.split.lmax = std::sqrt(2.0);
-        opt.seed_mode = init == "density" ? SeedMode::Density : SeedMode::Uniform;
+        opt.seed_mode = init == "density" ? SeedMode::Density : init == "lattice" ? SeedMode::Lattice : SeedMode::Uniform;
+        opt.multilevel = init == "multilevel";
+        if (init != "multilevel" && init != "lattice") opt.exact_count = false;  // the thesis's procedure
         tool.option("metric", sampled ? "saddle sampled on " + std::to_string(grid) + "x" + std::to_string(grid) : "saddle");
       } else {
         Mesh m = read_msh(in);
@@ -110,9 +134,27 @@ int main(int argc, char** argv) {
         validate_mesh(m, in, vo);
         const double def = convention == "philip" ? 0.5 : 0.25;
         bg = std::make_unique<Background>(Background::from_frame(m, scale > 0 ? scale : def, in));
-        opt.seed_mode = init == "uniform" ? SeedMode::Uniform : SeedMode::Density;
+        opt.seed_mode = init == "uniform" ? SeedMode::Uniform
+                        : (init.empty() || init == "lattice") ? SeedMode::Lattice
+                                                                : SeedMode::Density;
+        opt.multilevel = init == "multilevel";
         tool.option("metric", "frame Vinv");
       }
+      // Final all-quad cells the frame asks for: 4 x metric area of M_eff (docs/lpcvt.md, Sizes).
+      const double frame_cells = 4 * bg->metric_area();
+      tool.report()["frame_cells"] = frame_cells;
+      if (complexity > 0) {
+        const double target = complexity / ((degree + 1.0) * (degree + 1.0));
+        const double f = std::sqrt(target / frame_cells);
+        *bg = bg->scaled(f);
+        tool.report()["complexity"] = complexity;
+        tool.report()["degree"] = degree;
+        tool.report()["metric_rescale"] = f;
+        tool.log("--complexity " + std::to_string(complexity) + " at degree " + std::to_string(degree) + ": " +
+                 std::to_string(target) + " final cells (the frame asks " + std::to_string(frame_cells) +
+                 "): metric scaled by " + std::to_string(f));
+      }
+      tool.report()["target_cells"] = 4 * bg->metric_area();
       tool.option("metric_scale", bg->scale());
     }
     LpcvtResult r;
@@ -123,9 +165,15 @@ int main(int argc, char** argv) {
     TriangulationCheck chk = check_triangulation(r.mesh);
     if (!chk.ok()) throw NumericalError("lpcvt: invalid output triangulation: " + chk.summary());
     auto& rep = tool.report();
+    {
+      EnergyTimers et = energy_timers();
+      rep["energy_seconds"] = {{"delaunay", et.delaunay}, {"integrate", et.integrate}, {"evaluations", et.evaluations}, {"updates", et.updates}, {"rebuilds", et.rebuilds}};
+    }
     const nlohmann::json figures = report_json(r);
     for (auto& [k, v] : figures.items()) rep[k] = v;
     rep["area"] = chk.area;
+    // recombine pairs the triangles and splits every quad into four: about 2 cells per triangle
+    rep["expected_cells"] = 2 * r.mesh.num_cells();
     rep["domain_area"] = bg->area();
     AngleStats am = triangle_angles(*bg, r.mesh, true);
     rep["largest_angle_metric_median"] = am.median_largest;

@@ -223,6 +223,15 @@ Background Background::sampled(const Mesh& m, const AnalyticMetric& f, double sc
   return bg;
 }
 
+Background Background::scaled(double f) const {
+  if (!(f > 0) || !std::isfinite(f)) throw InputError("", "metric scale factor must be positive");
+  Background b = *this;
+  b.scale_ *= f;
+  for (IntegrationCell& ic : b.cells_) ic.M *= f;
+  b.metric_area_ *= f * f;
+  return b;
+}
+
 // ------------------------------------------------------------------------------ queries
 
 Mat2 Background::metric(int c, const Vec2& y) const {

@@ -92,6 +92,10 @@ class Background {
   /// the "16 x 16 background grid" case).
   static Background sampled(const Mesh& m, const AnalyticMetric& f, double scale);
 
+  /// The same background with M_eff multiplied by f > 0 (metric area times f^2): the coarse
+  /// levels of the multilevel start (lpcvt.hpp).
+  Background scaled(double f) const;
+
   const Mesh& mesh() const { return mesh_; }
   int num_cells() const { return static_cast<int>(cells_.size()); }
   const IntegrationCell& cell(int c) const { return cells_[c]; }

@@ -2,7 +2,11 @@
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+#include <CGAL/hilbert_sort.h>
+#include <CGAL/property_map.h>
 
 #include <algorithm>
 
@@ -11,20 +15,29 @@ namespace quadapt::lpcvt {
 namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
-using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+using Fb = CGAL::Triangulation_face_base_with_info_2<int, K>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
 using Point = K::Point_2;
 }  // namespace
 
 struct DelaunayGraph::Impl {
   DT dt;
+  std::vector<DT::Vertex_handle> vh;  // by site (null for hidden sites)
+  std::vector<Vec2> cc;               // circumcentres by face info
 };
 
 DelaunayGraph::DelaunayGraph(DelaunayGraph&&) noexcept = default;
 DelaunayGraph& DelaunayGraph::operator=(DelaunayGraph&&) noexcept = default;
 DelaunayGraph::~DelaunayGraph() = default;
 
-DelaunayGraph::DelaunayGraph(const std::vector<Vec2>& sites) : impl_(std::make_unique<Impl>()) {
+DelaunayGraph::DelaunayGraph(const std::vector<Vec2>& sites, bool with_triangles, bool with_voronoi)
+    : impl_(std::make_unique<Impl>()), with_triangles_(with_triangles), with_voronoi_(with_voronoi) {
+  build(sites);
+}
+
+void DelaunayGraph::build(const std::vector<Vec2>& sites) {
+  impl_->dt.clear();
   const int n = static_cast<int>(sites.size());
   std::vector<std::pair<Point, int>> pts;
   pts.reserve(n);
@@ -35,7 +48,7 @@ DelaunayGraph::DelaunayGraph(const std::vector<Vec2>& sites) : impl_(std::make_u
   dt.insert(pts.begin(), pts.end());
   hidden_.assign(n, 1);
   for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) hidden_[v->info()] = 0;
-  {
+  if (static_cast<int>(dt.number_of_vertices()) < n) {
     // A hidden site may be the smaller index of a duplicate pair: give the vertex the smallest.
     std::vector<int> order;
     for (int i = 0; i < n; ++i)
@@ -49,19 +62,87 @@ DelaunayGraph::DelaunayGraph(const std::vector<Vec2>& sites) : impl_(std::make_u
       }
     }
   }
+  impl_->vh.assign(n, DT::Vertex_handle());
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) impl_->vh[v->info()] = v;
+  tables();
+}
+
+void DelaunayGraph::tables() {
+  DT& dt = impl_->dt;
+  const int n = static_cast<int>(hidden_.size());
+  hull_ = hidden_;
   ptr_.assign(n + 1, 0);
-  std::vector<std::vector<int>> nb(n);
-  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
-    auto c = dt.incident_vertices(v), done = c;
-    if (c == nullptr) continue;
-    do {
-      if (!dt.is_infinite(c)) nb[v->info()].push_back(c->info());
-    } while (++c != done);
+  adj_.clear();
+  vor_.clear();
+  tris_.clear();
+  if (dt.dimension() < 2) {
+    // Collinear sites: neighbours along the line, no faces.
+    std::vector<std::vector<int>> nb(n);
+    for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
+      int a = e->first->vertex(DT::cw(e->second))->info(), b = e->first->vertex(DT::ccw(e->second))->info();
+      nb[a].push_back(b);
+      nb[b].push_back(a);
+    }
+    for (int i = 0; i < n; ++i) {
+      ptr_[i + 1] = ptr_[i] + static_cast<int>(nb[i].size());
+      hull_[i] = 1;
+    }
+    for (auto& l : nb) adj_.insert(adj_.end(), l.begin(), l.end());
+    return;
   }
-  for (int i = 0; i < n; ++i) ptr_[i + 1] = ptr_[i] + static_cast<int>(nb[i].size());
-  adj_.reserve(ptr_[n]);
-  for (auto& l : nb) adj_.insert(adj_.end(), l.begin(), l.end());
-  if (dt.dimension() == 2) {
+  // Circumcentres of the finite faces, indexed by the face info.
+  std::vector<Vec2>& cc = impl_->cc;
+  cc.clear();
+  if (with_voronoi_) {
+    cc.reserve(dt.number_of_faces());
+    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+      f->info() = static_cast<int>(cc.size());
+      Point c = CGAL::circumcenter(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+      cc.emplace_back(c.x(), c.y());
+    }
+  }
+  // Adjacency from the faces around each vertex, counter-clockwise: face k = (v, n_k, n_k+1),
+  // starting at the face whose n_k is the smallest neighbour (canonical: independent of how the
+  // triangulation was made).
+  std::vector<DT::Face_handle> first(n);
+  for (int i = 0; i < n; ++i) {
+    DT::Vertex_handle v = impl_->vh[i];
+    if (v == DT::Vertex_handle()) continue;
+    auto f = dt.incident_faces(v), done = f;
+    int d = 0, best = -1;
+    if (f != nullptr) do {
+        const int iv = f->index(v);
+        auto a = f->vertex(DT::ccw(iv));
+        if (!dt.is_infinite(a)) {
+          ++d;
+          if (best < 0 || a->info() < best) {
+            best = a->info();
+            first[i] = f;
+          }
+        }
+        if (dt.is_infinite(f)) hull_[i] = 1;
+      } while (++f != done);
+    ptr_[i + 1] = d;
+  }
+  for (int i = 0; i < n; ++i) ptr_[i + 1] += ptr_[i];
+  adj_.resize(ptr_[n]);
+  if (with_voronoi_) vor_.assign(ptr_[n], Vec2::Zero());
+  for (int i = 0; i < n; ++i) {
+    DT::Vertex_handle v = impl_->vh[i];
+    if (v == DT::Vertex_handle() || ptr_[i + 1] == ptr_[i]) continue;
+    auto f = dt.incident_faces(v, first[i]), done = f;
+    int k = ptr_[i];
+    do {
+      const int iv = f->index(v);
+      auto a = f->vertex(DT::ccw(iv));
+      if (!dt.is_infinite(a)) {
+        if (with_voronoi_ && !hull_[i]) vor_[k] = cc[f->info()];
+        adj_[k++] = a->info();
+      }
+    } while (++f != done);
+  }
+  if (with_triangles_) {
+    tris_.reserve(dt.number_of_faces());
     for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
       tris_.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
     std::sort(tris_.begin(), tris_.end(), [](const auto& a, const auto& b) {
@@ -71,8 +152,60 @@ DelaunayGraph::DelaunayGraph(const std::vector<Vec2>& sites) : impl_(std::make_u
   }
 }
 
+bool DelaunayGraph::update(const std::vector<Vec2>& sites, int* flips) {
+  if (flips) *flips = 0;
+  DT& dt = impl_->dt;
+  const int n = static_cast<int>(hidden_.size());
+  bool ok = static_cast<int>(sites.size()) == n && dt.dimension() == 2 &&
+            static_cast<int>(dt.number_of_vertices()) == n;
+  if (ok)
+    for (int i = 0; i < n && ok; ++i) {
+      const Point& p = impl_->vh[i]->point();
+      if (hull_[i] && (p.x() != sites[i].x() || p.y() != sites[i].y())) ok = false;
+    }
+  if (ok) {
+    for (int i = 0; i < n; ++i) impl_->vh[i]->set_point(Point(sites[i].x(), sites[i].y()));
+    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end() && ok; ++f)
+      if (CGAL::orientation(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()) != CGAL::LEFT_TURN)
+        ok = false;
+  }
+  if (!ok) {
+    build(sites);
+    return false;
+  }
+  // Lawson flips until every interior edge is (symbolically perturbed) Delaunay.
+  std::vector<std::pair<DT::Face_handle, int>> stack;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      DT::Face_handle g = f->neighbor(i);
+      if (!dt.is_infinite(g) && &*f < &*g) stack.emplace_back(f, i);
+    }
+  int nflip = 0;
+  while (!stack.empty()) {
+    auto [f, i] = stack.back();
+    stack.pop_back();
+    DT::Face_handle g = f->neighbor(i);
+    if (dt.is_infinite(f) || dt.is_infinite(g)) continue;
+    if (dt.side_of_oriented_circle(g, f->vertex(i)->point(), true) != CGAL::ON_POSITIVE_SIDE) continue;
+    dt.flip(f, i);
+    ++nflip;
+    for (int k = 0; k < 3; ++k) {
+      stack.emplace_back(f, k);
+      stack.emplace_back(g, k);
+    }
+    if (nflip > 4 * n + 1000) {  // cannot happen for a valid start; be safe
+      build(sites);
+      return false;
+    }
+  }
+  if (flips) *flips = nflip;
+  tables();
+  return true;
+}
+
 std::vector<std::array<int, 2>> DelaunayGraph::edges() const {
   std::vector<std::array<int, 2>> e;
+  e.reserve(adj_.size() / 2);
   for (int i = 0; i < num_sites(); ++i)
     for (const int* j = nbr_begin(i); j != nbr_end(i); ++j)
       if (i < *j) e.push_back({i, *j});
@@ -92,6 +225,21 @@ std::vector<int> DelaunayGraph::nearest(const std::vector<Vec2>& queries) const 
     hint = v;
   }
   return out;
+}
+
+std::vector<int> spatial_order(const std::vector<Vec2>& sites, int from) {
+  const int n = static_cast<int>(sites.size());
+  from = std::max(0, from);
+  std::vector<Point> pts;
+  pts.reserve(n);
+  for (const Vec2& p : sites) pts.emplace_back(p.x(), p.y());
+  std::vector<std::size_t> idx;
+  for (int i = from; i < n; ++i) idx.push_back(i);
+  using Traits = CGAL::Spatial_sort_traits_adapter_2<K, CGAL::Pointer_property_map<Point>::type>;
+  // The median policy splits by rank (std::nth_element): deterministic for a given input.
+  CGAL::hilbert_sort(idx.begin(), idx.end(), Traits(CGAL::make_property_map(pts)),
+                     CGAL::Hilbert_sort_median_policy());
+  return std::vector<int>(idx.begin(), idx.end());
 }
 
 }  // namespace quadapt::lpcvt

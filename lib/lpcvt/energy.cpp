@@ -3,9 +3,11 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <utility>
 
+#include "lpcvt/delaunay.hpp"
 #include "lpcvt/quadrature.hpp"
 
 namespace quadapt::lpcvt {
@@ -41,16 +43,72 @@ inline void power(double F, double p, double& f, double& g) {
 }
 
 int g_min_parallel_sites = 2000;
+bool g_closed_form = true;
 
 struct Contribution {
   int site;
   Vec2 g;
 };
 
-/// Integrates one piece: returns its energy, appends gradient contributions when `out` != null.
-double integrate_piece(const RvdPiece& pc, const Background& bg, const std::vector<Vec2>& x,
-                       double p, const TriangleRule& rule, std::vector<Contribution>* out,
-                       std::vector<Vec2>& G) {
+/// Append-only list of contributions that keeps its storage between evaluations.
+struct ContribBuf {
+  std::vector<Contribution> v;
+  size_t n = 0;
+  void clear() { n = 0; }
+  void push(int site, const Vec2& g) {
+    if (n == v.size()) v.resize(2 * n + 64);
+    v[n].site = site;
+    v[n].g = g;
+    ++n;
+  }
+};
+
+/// The vertex lines' chain rule: adds the contributions of dE/dv_k (G) through every vertex
+/// that depends on sites (intersection of the lines of edges k-1 and k). Contributions to the
+/// piece's own site are added to `gi`; those to a neighbour are summed per edge (acc) and
+/// pushed once per bisector edge.
+void chain_vertices(const RvdPiece& pc, const Background& bg, const std::vector<Vec2>& x,
+                    const std::vector<Vec2>& G, Vec2& gi, std::vector<Vec2>& acc, ContribBuf& out) {
+  const int m = static_cast<int>(pc.v.size());
+  const Vec2& xi = x[pc.site];
+  const IntegrationCell& Q = bg.cell(pc.cell);
+  acc.assign(m, Vec2::Zero());
+  for (int k = 0; k < m; ++k) {
+    const int km = k == 0 ? m - 1 : k - 1;
+    const int la = pc.label[km], lb = pc.label[k];
+    if (la < 0 && lb < 0) continue;
+    if (G[k].x() == 0 && G[k].y() == 0) continue;
+    const Vec2& c = pc.v[k];
+    auto normal = [&](int lab) -> Vec2 {
+      if (lab >= 0) return x[lab] - xi;
+      int e = -1 - lab;
+      Vec2 t = Q.v[(e + 1) % Q.nv] - Q.v[e];
+      return Vec2(t.y(), -t.x());
+    };
+    const Vec2 n0 = normal(la), n1 = normal(lb);
+    const double det = n0.x() * n1.y() - n0.y() * n1.x();
+    if (!(std::abs(det) > 1e-300)) continue;
+    // lambda = -A^-T G with A = [n0; n1]
+    const double lam0 = -(n1.y() * G[k].x() - n1.x() * G[k].y()) / det;
+    const double lam1 = -(-n0.y() * G[k].x() + n0.x() * G[k].y()) / det;
+    if (la >= 0) {
+      gi += lam0 * (xi - c);
+      acc[km] += lam0 * (c - x[la]);
+    }
+    if (lb >= 0) {
+      gi += lam1 * (xi - c);
+      acc[k] += lam1 * (c - x[lb]);
+    }
+  }
+  for (int k = 0; k < m; ++k)
+    if (pc.label[k] >= 0 && (acc[k].x() != 0 || acc[k].y() != 0)) out.push(pc.label[k], acc[k]);
+}
+
+/// Quadrature path (analytic metrics, any p): returns the piece's energy, appends gradient
+/// contributions when `out` != null.
+double integrate_piece_rule(const RvdPiece& pc, const Background& bg, const std::vector<Vec2>& x,
+                            double p, const TriangleRule& rule, ContribBuf* out,
+                            std::vector<Vec2>& G, std::vector<Vec2>& acc) {
   const int m = static_cast<int>(pc.v.size());
   const Vec2& xi = x[pc.site];
   const bool analytic = bg.is_analytic();
@@ -97,66 +155,143 @@ double integrate_piece(const RvdPiece& pc, const Background& bg, const std::vect
     G[t + 1] += area * GC + 0.5 * Et * dJC;
   }
   if (!out) return E;
-  out->push_back({pc.site, gx});
-  // Chain rule through the vertices: each is the intersection of the lines of its two edges.
-  const IntegrationCell& Q = bg.cell(pc.cell);
-  for (int k = 0; k < m; ++k) {
-    const int la = pc.label[k == 0 ? m - 1 : k - 1], lb = pc.label[k];
-    if (la < 0 && lb < 0) continue;
-    if (G[k].x() == 0 && G[k].y() == 0) continue;
-    const Vec2& c = pc.v[k];
-    auto normal = [&](int lab) -> Vec2 {
-      if (lab >= 0) return x[lab] - xi;
-      int e = -1 - lab;
-      Vec2 t = Q.v[(e + 1) % Q.nv] - Q.v[e];
-      return Vec2(t.y(), -t.x());
-    };
-    Mat2 Am;
-    Am.row(0) = normal(la).transpose();
-    Am.row(1) = normal(lb).transpose();
-    const double det = Am.determinant();
-    if (!(std::abs(det) > 1e-300)) continue;
-    // lambda = -A^-T G
-    Mat2 AinvT;
-    AinvT << Am(1, 1), -Am(1, 0), -Am(0, 1), Am(0, 0);
-    AinvT /= det;
-    const Vec2 lam = -(AinvT * G[k]);
-    const int labs[2] = {la, lb};
-    for (int r = 0; r < 2; ++r) {
-      const int j = labs[r];
-      if (j < 0) continue;
-      out->push_back({pc.site, lam[r] * (xi - c)});
-      out->push_back({j, lam[r] * (c - x[j])});
-    }
-  }
+  chain_vertices(pc, bg, x, G, gx, acc, *out);
+  out->push(pc.site, gx);
   return E;
+}
+
+/// h[n] = h_n(a, b, c), n = 0..P (complete homogeneous symmetric polynomials).
+template <int P>
+inline void complete_homogeneous(double a, double b, double c, double* h) {
+  double ha = 1, hab = 1;
+  h[0] = 1;
+  for (int n = 1; n <= P; ++n) {
+    ha *= a;
+    hab = ha + b * hab;
+    h[n] = hab + c * h[n - 1];
+  }
+}
+
+/// d h_P / dz for z in (a, b, c): h_{P-1}(a, b, c, z) = sum_k z^k h_{P-1-k}(a, b, c).
+template <int P>
+inline double dh(const double* h, double z) {
+  double s = h[0];
+  for (int n = 1; n < P; ++n) s = s * z + h[n];
+  return s;
+}
+
+/// Closed-form path (constant metric on the piece, even integer P): see energy.hpp.
+template <int P>
+double integrate_piece_closed(const RvdPiece& pc, const Background& bg, const std::vector<Vec2>& x,
+                              ContribBuf* out, std::vector<Vec2>& G, std::vector<Vec2>& F,
+                              std::vector<Vec2>& acc) {
+  const int m = static_cast<int>(pc.v.size());
+  const Vec2& xi = x[pc.site];
+  const Mat2& M = bg.cell(pc.cell).M;
+  constexpr double kappa = 2.0 / ((P + 1.0) * (P + 2.0));
+  F.resize(m);
+  for (int k = 0; k < m; ++k) F[k] = M * (pc.v[k] - xi);
+  if (out) G.assign(2 * m, Vec2::Zero());  // G[k]: dE/dF at vertex k; G[m + k]: geometric part
+  double E = 0;
+  double ha[P + 1], hb[P + 1];
+  const Vec2& A = pc.v[0];
+  for (int t = 1; t + 1 < m; ++t) {
+    const Vec2 &B = pc.v[t], &C = pc.v[t + 1];
+    const double J = cross(B - A, C - A);
+    if (J == 0 && !out) continue;
+    const Vec2 &a = F[0], &b = F[t], &c = F[t + 1];
+    complete_homogeneous<P>(a.x(), b.x(), c.x(), ha);
+    complete_homogeneous<P>(a.y(), b.y(), c.y(), hb);
+    const double Et = kappa * (ha[P] + hb[P]);  // mean of the integrand over the facet
+    const double area = 0.5 * J;
+    E += area * Et;
+    if (!out) continue;
+    const double s = area * kappa;
+    G[0] += s * Vec2(dh<P>(ha, a.x()), dh<P>(hb, a.y()));
+    G[t] += s * Vec2(dh<P>(ha, b.x()), dh<P>(hb, b.y()));
+    G[t + 1] += s * Vec2(dh<P>(ha, c.x()), dh<P>(hb, c.y()));
+    const Vec2 dJB(C.y() - A.y(), -(C.x() - A.x()));
+    const Vec2 dJC(-(B.y() - A.y()), B.x() - A.x());
+    G[m] -= 0.5 * Et * (dJB + dJC);
+    G[m + t] += 0.5 * Et * dJB;
+    G[m + t + 1] += 0.5 * Et * dJC;
+  }
+  if (!out) return E;
+  Vec2 sumF = Vec2::Zero();
+  for (int k = 0; k < m; ++k) {
+    sumF += G[k];
+    G[k] = M.transpose() * G[k] + G[m + k];  // dE/dv_k
+  }
+  Vec2 gi = -(M.transpose() * sumF);
+  G.resize(m);
+  chain_vertices(pc, bg, x, G, gi, acc, *out);
+  out->push(pc.site, gi);
+  return E;
+}
+
+using ClosedFn = double (*)(const RvdPiece&, const Background&, const std::vector<Vec2>&, ContribBuf*,
+                            std::vector<Vec2>&, std::vector<Vec2>&, std::vector<Vec2>&);
+
+ClosedFn closed_for(int p) {
+  switch (p) {
+    case 2: return &integrate_piece_closed<2>;
+    case 4: return &integrate_piece_closed<4>;
+    case 6: return &integrate_piece_closed<6>;
+    case 8: return &integrate_piece_closed<8>;
+    case 10: return &integrate_piece_closed<10>;
+    case 12: return &integrate_piece_closed<12>;
+    default: return nullptr;
+  }
 }
 
 }  // namespace
 
+struct EnergyWorkspace::Impl {
+  std::unique_ptr<DelaunayGraph> dt;  // kept between evaluations (DelaunayGraph::update)
+  long updates = 0, rebuilds = 0;
+  std::vector<ContribBuf> contrib;  // per integration cell
+  struct Thread {
+    RvdWorkspace rvd;
+    std::vector<RvdPiece> pieces;
+    std::vector<Vec2> G, F, acc;
+  };
+  std::vector<Thread> threads;
+};
+EnergyWorkspace::EnergyWorkspace() : impl(std::make_unique<Impl>()) {}
+EnergyWorkspace::~EnergyWorkspace() = default;
+
 EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, double p,
-                       bool gradient) {
+                       bool gradient, EnergyWorkspace* ws) {
+  EnergyWorkspace local;
+  EnergyWorkspace::Impl& W = ws ? *ws->impl : *local.impl;
   const std::vector<Vec2>& x = rvd.sites();
   const int nq = bg.num_cells();
   const TriangleRule& rule = rule_for_exponent(p);
+  const int ip = static_cast<int>(std::lround(p));
+  const ClosedFn closed = g_closed_form && !bg.is_analytic() && ip == p ? closed_for(ip) : nullptr;
   std::vector<double> eq(nq, 0.0);
-  std::vector<std::vector<Contribution>> contrib(gradient ? nq : 0);
+  if (gradient) {
+    W.contrib.resize(nq);
+    for (auto& c : W.contrib) c.clear();
+  }
   std::vector<long> npieces(nq, 0);
   // Parallel only when there is enough work: small problems lose more to thread start-up and
   // (on a loaded machine) to spinning threads than they gain.
   const bool parallel = static_cast<int>(x.size()) >= g_min_parallel_sites && nq >= 8;
-#pragma omp parallel if (parallel)
+  const int nthreads = parallel ? std::max(1, omp_get_max_threads()) : 1;
+  if (static_cast<int>(W.threads.size()) < nthreads) W.threads.resize(nthreads);
+#pragma omp parallel num_threads(nthreads) if (parallel)
   {
-    RvdWorkspace ws;
-    std::vector<RvdPiece> pcs;
-    std::vector<Vec2> G;
+    EnergyWorkspace::Impl::Thread& T = W.threads[omp_get_thread_num()];
 #pragma omp for schedule(dynamic, 8)
     for (int q = 0; q < nq; ++q) {
-      rvd.pieces(q, pcs, ws);
-      npieces[q] = static_cast<long>(pcs.size());
+      const int n = rvd.pieces(q, T.pieces, T.rvd);
+      npieces[q] = n;
       double e = 0;
-      for (const RvdPiece& pc : pcs)
-        e += integrate_piece(pc, bg, x, p, rule, gradient ? &contrib[q] : nullptr, G);
+      ContribBuf* out = gradient ? &W.contrib[q] : nullptr;
+      for (int k = 0; k < n; ++k)
+        e += closed ? closed(T.pieces[k], bg, x, out, T.G, T.F, T.acc)
+                    : integrate_piece_rule(T.pieces[k], bg, x, p, rule, out, T.G, T.acc);
       eq[q] = e;
     }
   }
@@ -168,23 +303,53 @@ EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, doubl
   if (gradient) {
     r.grad.assign(x.size(), Vec2::Zero());
     for (int q = 0; q < nq; ++q)
-      for (const Contribution& c : contrib[q]) r.grad[c.site] += c.g;
+      for (size_t k = 0; k < W.contrib[q].n; ++k) r.grad[W.contrib[q].v[k].site] += W.contrib[q].v[k].g;
   }
   return r;
 }
 
 void set_min_parallel_sites(int n) { g_min_parallel_sites = std::max(0, n); }
+void set_closed_form(bool on) { g_closed_form = on; }
+
+EnergyTimers g_timers;
+EnergyTimers energy_timers() { return g_timers; }
 
 EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, double p,
-                       bool gradient) {
-  RestrictedVoronoi rvd(bg, sites);
-  return lp_energy(rvd, bg, p, gradient);
+                       bool gradient, EnergyWorkspace* ws) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  std::unique_ptr<RestrictedVoronoi> rvd;
+  if (ws) {
+    EnergyWorkspace::Impl& W = *ws->impl;
+    if (!W.dt) {
+      W.dt = std::make_unique<DelaunayGraph>(sites, false, true);
+      ++W.rebuilds;
+    } else if (W.dt->update(sites)) {
+      ++W.updates;
+    } else {
+      ++W.rebuilds;
+    }
+    rvd = std::make_unique<RestrictedVoronoi>(bg, sites, *W.dt);
+  } else {
+    rvd = std::make_unique<RestrictedVoronoi>(bg, sites);
+  }
+  const auto t1 = Clock::now();
+  EnergyResult r = lp_energy(*rvd, bg, p, gradient, ws);
+  const auto t2 = Clock::now();
+  g_timers.delaunay += std::chrono::duration<double>(t1 - t0).count();
+  if (ws) {
+    g_timers.updates = ws->impl->updates;
+    g_timers.rebuilds = ws->impl->rebuilds;
+  }
+  g_timers.integrate += std::chrono::duration<double>(t2 - t1).count();
+  ++g_timers.evaluations;
+  return r;
 }
 
 double piece_energy(const RvdPiece& piece, const Background& bg, const Vec2& x_site, double p) {
   std::vector<Vec2> x(static_cast<size_t>(piece.site) + 1, x_site);
-  std::vector<Vec2> G;
-  return integrate_piece(piece, bg, x, p, rule_for_exponent(p), nullptr, G);
+  std::vector<Vec2> G, acc;
+  return integrate_piece_rule(piece, bg, x, p, rule_for_exponent(p), nullptr, G, acc);
 }
 
 }  // namespace quadapt::lpcvt

@@ -1,10 +1,15 @@
 #include "lpcvt/lpcvt.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <memory>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
+#include "lpcvt/delaunay.hpp"
+#include "lpcvt/lattice.hpp"
+#include "lpcvt/multilevel.hpp"
 #include "lpcvt/triangulate.hpp"
 
 namespace quadapt::lpcvt {
@@ -22,40 +27,46 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
   auto say = [&](const std::string& s) {
     if (log) log(s);
   };
+  using Clock = std::chrono::steady_clock;
   LpcvtResult r;
   // Boundary (§4.2).
-  auto curves = boundary_curves(bg, opt.corner_angle);
+  const auto curves = boundary_curves(bg, opt.corner_angle);
   r.boundary = mesh_boundary(bg, curves, opt.boundary_samples);
   for (double l : r.boundary.curve_length) r.boundary_metric_length += l;
   r.metric_area = bg.metric_area();
   r.requested_points = r.metric_area + 0.5 * r.boundary_metric_length + 1;
   r.nfixed = static_cast<int>(r.boundary.points.size());
-  // Interior seeds.
-  int n0 = opt.initial_points;
-  if (n0 < 0) n0 = std::max(1, static_cast<int>(std::lround(r.requested_points)) - r.nfixed);
-  std::vector<Vec2> sites = r.boundary.points;
-  auto seeds = seed_points(bg, n0, opt.seed_mode, opt.seed);
-  sites.insert(sites.end(), seeds.begin(), seeds.end());
-  r.initial_sites = sites;
-  say(std::to_string(curves.size()) + " boundary curves, " + std::to_string(r.nfixed) +
-      " boundary points; " + std::to_string(n0) + " interior seeds; requested points " +
-      fmt("%.1f", r.requested_points) + " (metric area " + fmt("%.1f", r.metric_area) + ")");
+  const int requested_total = std::max(r.nfixed + 1, static_cast<int>(std::lround(r.requested_points)));
+  const int interior_final = requested_total - r.nfixed;
+
+  // Levels: the coarsest keeps at least opt.coarse_points interior points.
+  int nlevels = 0;
+  if (opt.multilevel)
+    while (interior_final / std::pow(4.0, nlevels + 1) >= opt.coarse_points && nlevels < 12) ++nlevels;
 
   SplitMergeOptions smo = opt.split;
   smo.q = opt.p;
-  int good = 0;
-  bool outer_converged = false, changed = false;
   MinimizeResult last;
+  bool outer_converged = false, changed = false;
+  int cycle = 0;  // global cycle counter (history)
   auto on_iter = [&](const IterationRecord& it) {
     if (it.iteration > 0 && it.iteration % 25 == 0)
       say("  cycle " + std::to_string(it.cycle) + " iteration " + std::to_string(it.iteration) +
           ": E = " + fmt("%.6e", it.energy) + ", |grad E| = " + fmt("%.3e", it.grad_norm));
   };
-  auto minimise = [&](int cycle, bool polish) {
-    last = minimize_energy(bg, sites, r.nfixed, opt.p, opt.lbfgs, &r.history, cycle, on_iter);
+  std::vector<Vec2> sites;
+  int nfixed = 0;
+  BoundaryPoints bnd;
+  std::unique_ptr<Background> owned;
+  const Background* lbg = &bg;
+  LevelRecord* lrec = nullptr;
+
+  auto minimise = [&](int cyc, bool polish) {
+    last = minimize_energy(*lbg, sites, nfixed, opt.p, opt.lbfgs, &r.history, cyc, on_iter);
     CycleRecord c;
-    c.cycle = cycle;
+    c.cycle = cyc;
     c.polish = polish;
+    c.level = lrec->level;
     c.iterations = last.iterations;
     c.evaluations = last.evaluations;
     c.energy = last.energy;
@@ -65,38 +76,127 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
     c.points = static_cast<int>(sites.size());
     r.iterations += last.iterations;
     r.evaluations += last.evaluations;
+    lrec->iterations += last.iterations;
+    lrec->evaluations += last.evaluations;
     return c;
   };
-  int cycle = 0;
-  for (cycle = 1; cycle <= opt.max_cycles; ++cycle) {
-    double tol = opt.change_tol;
-    if (cycle > opt.ramp_after) tol = std::min(opt.change_tol_max, opt.change_tol + 0.005 * (cycle - opt.ramp_after));
-    CycleRecord c = minimise(cycle, false);
-    c.split = split_merge(bg, sites, r.nfixed, r.boundary.segments, smo);
-    c.points = static_cast<int>(sites.size());
-    c.tolerance = tol;
-    r.cycles.push_back(c);
-    changed = c.split.splits + c.split.merges + c.split.removed_outside > 0;
-    say("cycle " + std::to_string(cycle) + ": " + std::to_string(c.iterations) + " iterations (" +
-        std::to_string(c.evaluations) + " evaluations, " + c.stop + "), E = " + fmt("%.6e", c.energy) +
-        ", |grad E| = " + fmt("%.3e", c.grad_norm) + "; " + std::to_string(c.split.edges) + " edges, " +
-        std::to_string(c.split.splits) + " splits, " + std::to_string(c.split.merges) + " merges" +
-        (c.split.removed_outside ? ", " + std::to_string(c.split.removed_outside) + " removed" : std::string()) +
-        " (" + fmt("%.2f", 100 * c.split.change_fraction()) + "%), " + std::to_string(c.points) + " points");
-    if (c.split.change_fraction() < tol)
-      ++good;
-    else
-      good = 0;
-    if (good >= 2) {
-      outer_converged = true;
-      break;
+  // Free sites renumbered along a Hilbert curve (memory locality of the energy evaluation).
+  auto sort_free = [&]() {
+    std::vector<int> order = spatial_order(sites, nfixed);
+    std::vector<Vec2> s(sites.begin(), sites.begin() + nfixed);
+    for (int i : order) s.push_back(sites[i]);
+    sites.swap(s);
+  };
+
+  for (int level = nlevels; level >= 0; --level) {
+    const auto t0 = Clock::now();
+    const double f = std::pow(0.5, level);
+    if (level > 0) {
+      owned = std::make_unique<Background>(bg.scaled(f));
+      lbg = owned.get();
+    } else {
+      lbg = &bg;
     }
-  }
-  if (changed && opt.polish) {
-    CycleRecord c = minimise(std::min(cycle, opt.max_cycles) + 1, true);
-    r.cycles.push_back(c);
-    say("final minimisation: " + std::to_string(c.iterations) + " iterations (" + c.stop + "), E = " +
-        fmt("%.6e", c.energy) + ", |grad E| = " + fmt("%.3e", c.grad_norm));
+    r.levels.push_back(LevelRecord{});
+    lrec = &r.levels.back();
+    lrec->level = level;
+    lrec->scale = f;
+    bnd = level > 0 ? mesh_boundary(*lbg, curves, opt.boundary_samples) : r.boundary;
+    const std::vector<Vec2> prev_free(sites.begin() + std::min<size_t>(nfixed, sites.size()), sites.end());
+    nfixed = static_cast<int>(bnd.points.size());
+    sites = bnd.points;
+    const int target_interior = static_cast<int>(std::lround(interior_final / std::pow(4.0, level)));
+    if (level == nlevels) {
+      int n0 = opt.initial_points;
+      if (n0 < 0 || nlevels > 0) n0 = std::max(1, target_interior);
+      std::vector<Vec2> seeds;
+      if (opt.seed_mode == SeedMode::Lattice) {
+        seeds = lattice_points(*lbg, sites, lattice_seed(*lbg), opt.lattice_delta, 4 * n0 + 100);
+        lrec->start_points = static_cast<int>(seeds.size()) + nfixed;
+        sites.insert(sites.end(), seeds.begin(), seeds.end());
+        if (opt.exact_count && opt.initial_points < 0)
+          adjust_count(*lbg, sites, nfixed, bnd.segments, nfixed + target_interior, smo);
+        n0 = static_cast<int>(sites.size()) - nfixed;
+      } else {
+        seeds = seed_points(*lbg, n0, opt.seed_mode, opt.seed);
+        sites.insert(sites.end(), seeds.begin(), seeds.end());
+        lrec->start_points = static_cast<int>(sites.size());
+      }
+      r.initial_sites = sites;
+      say(std::to_string(curves.size()) + " boundary curves, " + std::to_string(r.nfixed) +
+          " boundary points; requested points " + fmt("%.1f", r.requested_points) + " (metric area " +
+          fmt("%.1f", r.metric_area) + ")" +
+          (nlevels ? "; " + std::to_string(nlevels + 1) + " levels, the coarsest with " + std::to_string(nfixed) +
+                         " boundary points and " + std::to_string(n0) + " interior seeds"
+                   : "; " + std::to_string(n0) + " interior seeds") +
+          (opt.seed_mode == SeedMode::Lattice ? " (lattice: " + std::to_string(lrec->start_points - nfixed) + " grown)"
+                                              : std::string()));
+    } else {
+      auto kids = refine_sites(*lbg, prev_free);
+      sites.insert(sites.end(), kids.begin(), kids.end());
+      lrec->start_points = static_cast<int>(sites.size());
+      if (opt.exact_count) adjust_count(*lbg, sites, nfixed, bnd.segments, nfixed + target_interior, smo);
+      say("level " + std::to_string(level) + ": " + std::to_string(nfixed) + " boundary points, " +
+          std::to_string(kids.size()) + " children -> " + std::to_string(sites.size() - nfixed) + " interior points");
+    }
+    sort_free();
+    int good = 0;
+    outer_converged = false;
+    changed = false;
+    // The coarsest level (or a single level) needs two settled cycles in a row (thesis §4.5); a
+    // finer level starts from a settled coarser one, and a lattice start is settled by
+    // construction, so one settled cycle is enough there.
+    const int need = level == nlevels && opt.seed_mode != SeedMode::Lattice ? 2 : 1;
+    for (int k = 1; k <= opt.max_cycles; ++k) {
+      ++cycle;
+      double tol = opt.change_tol;
+      if (k > opt.ramp_after) tol = std::min(opt.change_tol_max, opt.change_tol + 0.005 * (k - opt.ramp_after));
+      CycleRecord c = minimise(cycle, false);
+      c.split = split_merge(*lbg, sites, nfixed, bnd.segments, smo);
+      c.points = static_cast<int>(sites.size());
+      c.tolerance = tol;
+      r.cycles.push_back(c);
+      ++lrec->cycles;
+      changed = c.split.splits + c.split.merges + c.split.removed_outside > 0;
+      say((nlevels ? "level " + std::to_string(level) + " " : std::string()) + "cycle " + std::to_string(cycle) +
+          ": " + std::to_string(c.iterations) + " iterations (" + std::to_string(c.evaluations) +
+          " evaluations, " + c.stop + "), E = " + fmt("%.6e", c.energy) + ", |grad E| = " + fmt("%.3e", c.grad_norm) +
+          "; " + std::to_string(c.split.edges) + " edges, " + std::to_string(c.split.splits) + " splits, " +
+          std::to_string(c.split.merges) + " merges" +
+          (c.split.removed_outside ? ", " + std::to_string(c.split.removed_outside) + " removed" : std::string()) +
+          " (" + fmt("%.2f", 100 * c.split.change_fraction()) + "%), " + std::to_string(c.points) + " points");
+      if (changed) sort_free();
+      if (c.split.change_fraction() < tol)
+        ++good;
+      else
+        good = 0;
+      if (good >= need) {
+        outer_converged = true;
+        break;
+      }
+    }
+    if (level == 0 && changed && opt.polish) {
+      if (opt.exact_count && opt.initial_points < 0) {
+        const int d = adjust_count(*lbg, sites, nfixed, bnd.segments, requested_total, smo);
+        if (d) {
+          say("point count set to the requested " + std::to_string(requested_total) + " (" +
+              (d > 0 ? "+" : "") + std::to_string(d) + ")");
+          sort_free();
+        }
+      }
+      ++cycle;
+      CycleRecord c = minimise(cycle, true);
+      r.cycles.push_back(c);
+      say("final minimisation: " + std::to_string(c.iterations) + " iterations (" + c.stop + "), E = " +
+          fmt("%.6e", c.energy) + ", |grad E| = " + fmt("%.3e", c.grad_norm));
+    }
+    lrec->points = static_cast<int>(sites.size());
+    lrec->boundary_points = nfixed;
+    lrec->seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (nlevels)
+      say("level " + std::to_string(level) + " done: " + std::to_string(lrec->points) + " points, " +
+          std::to_string(lrec->cycles) + " cycles, " + std::to_string(lrec->iterations) + " iterations, " +
+          fmt("%.2f", lrec->seconds) + " s");
   }
   int removed = remove_outside(bg, sites, r.nfixed);
   if (removed) say(std::to_string(removed) + " points outside the domain removed");
@@ -141,10 +241,16 @@ nlohmann::json report_json(const LpcvtResult& r) {
                    {"converged", c.converged}, {"stop", c.stop}, {"points", c.points},
                    {"edges", c.split.edges}, {"splits", c.split.splits}, {"merges", c.split.merges},
                    {"removed", c.split.removed_outside}, {"change_fraction", c.split.change_fraction()},
-                   {"tolerance", c.tolerance}, {"edge_length_min", c.split.min_length},
+                   {"tolerance", c.tolerance}, {"level", c.level}, {"edge_length_min", c.split.min_length},
                    {"edge_length_mean", c.split.mean_length}, {"edge_length_max", c.split.max_length}});
   }
   j["cycle_history"] = cyc;
+  json lv = json::array();
+  for (const LevelRecord& l : r.levels)
+    lv.push_back({{"level", l.level}, {"scale", l.scale}, {"points", l.points}, {"boundary_points", l.boundary_points},
+                  {"start_points", l.start_points}, {"cycles", l.cycles}, {"iterations", l.iterations},
+                  {"evaluations", l.evaluations}, {"seconds", l.seconds}});
+  j["levels"] = lv;
   json h = {{"cycle", json::array()}, {"iteration", json::array()}, {"energy", json::array()},
             {"grad_norm", json::array()}, {"step", json::array()}, {"points", json::array()}};
   for (const IterationRecord& it : r.history) {

@@ -5,6 +5,10 @@
 // (the tolerance ramps up to `change_tol_max` after `ramp_after` cycles when split/merge
 // oscillates, §4.5), then the constrained Delaunay triangulation (§4.6).
 //
+// Multilevel start (option `multilevel`, lpcvt/multilevel.hpp): the cycles run first on the
+// metric 2^-L M_eff with 4^-L of the points, then on every finer level from the children of the
+// coarser sites, with the count set exactly at the start of each level (adjust_count).
+//
 // Point count. One point per unit metric area: the requested number of sites is
 //   N_req = A_M + P_M / 2 + 1,  A_M = integral |det M_eff| (Background::metric_area),
 //   P_M = metric length of the boundary,
@@ -38,6 +42,21 @@ struct LpcvtOptions {
   double corner_angle = 30;     ///< degrees: boundary corners split curves
   int boundary_samples = 8;     ///< samples per background edge (analytic metrics)
   bool polish = true;           ///< minimise once more after the last split/merge if it changed points
+  bool multilevel = false;      ///< multilevel start (above); the coarsest level uses seed_mode
+  int coarse_points = 250;      ///< multilevel: interior points of the coarsest level, at least
+  double lattice_delta = 0.6;   ///< SeedMode::Lattice: rejection distance (metric units)
+  bool exact_count = true;      ///< set the point count to the requested one at the start of each
+                                ///< level (multilevel) and before the polish, see adjust_count
+};
+
+/// One level of the multilevel start (level 0 = the final metric).
+struct LevelRecord {
+  int level = 0;
+  double scale = 1;             ///< metric factor 2^-level
+  int points = 0, boundary_points = 0;
+  int start_points = 0;         ///< sites at the start (children, before adjust_count)
+  int cycles = 0, iterations = 0, evaluations = 0;
+  double seconds = 0;
 };
 
 struct CycleRecord {
@@ -50,6 +69,7 @@ struct CycleRecord {
   SplitMergeResult split;       ///< zero for the polish step
   double tolerance = 0;         ///< change tolerance used for this cycle
   bool polish = false;
+  int level = 0;                ///< multilevel level (0 = final)
 };
 
 struct LpcvtResult {
@@ -59,6 +79,7 @@ struct LpcvtResult {
   BoundaryPoints boundary;
   std::vector<IterationRecord> history;
   std::vector<CycleRecord> cycles;
+  std::vector<LevelRecord> levels;  ///< coarsest first; one entry without multilevel
   int iterations = 0, evaluations = 0;
   double energy = 0, grad_norm = 0;
   bool converged = false;          ///< outer loop converged and the last minimisation converged

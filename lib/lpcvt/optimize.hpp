@@ -1,8 +1,9 @@
 #pragma once
-// Minimisation of the L_p-CVT energy over the free sites (thesis Algorithm 1): L-BFGS with the
-// Moré-Thuente line search (strong Wolfe conditions, cubic interpolation) of LBFGSpp. LBFGSpp
-// 0.1.0's LBFGSSolver does not compile with Moré-Thuente, so its L-BFGS-B solver is used with
-// infinite bounds, which is plain L-BFGS.
+// Minimisation of the L_p-CVT energy over the free sites (thesis Algorithm 1): L-BFGS (two-loop
+// recursion, written here) with the Moré-Thuente line search (strong Wolfe conditions, cubic
+// interpolation) of LBFGSpp. (LBFGSpp 0.1.0's LBFGSSolver does not compile with Moré-Thuente;
+// its L-BFGS-B solver with infinite bounds, used before, spent ~10% of the time in its Cauchy
+// point and subspace minimisation.)
 //
 // Scaling: the solver sees z = (x - x0) / L (L = the mean point spacing asked for by the
 // metric) and f = E / (E0 / n_free) (E0 the energy at the start), so its tolerances are
@@ -11,10 +12,11 @@
 //
 // Stops: gradient below gtol ("gradient", converged); relative energy change below `delta`
 // over `past` iterations ("energy", converged); the iteration cap ("iteration cap", not
-// converged); a line-search failure (LBFGSpp throws std::runtime_error / std::logic_error;
-// caught): L-BFGS restarts with fresh memory from the last accepted iterate (up to 5 times);
-// when it fails again without progress the last accepted iterate is kept, and it counts as
-// converged only when the gradient is already within 100 gtol ("line search at rounding level").
+// converged); a line-search failure (LBFGSpp throws; caught): L-BFGS restarts with fresh memory
+// from the last accepted iterate (up to 5 times); when the first step after a restart fails
+// too, the last accepted iterate is kept. A failure counts as converged when the gradient is
+// within 100 gtol ("line search at rounding level") or the energy changed by less than 1e-9
+// (relative) over the last 5 iterations ("line search, energy stagnant").
 #include <functional>
 #include <string>
 #include <vector>
@@ -29,7 +31,7 @@ struct LbfgsOptions {
   double delta = 1e-10;      ///< relative energy decrease over `past` iterations
   int past = 5;
   int memory = 7;            ///< L-BFGS correction pairs
-  double xtol = 1e-5;        ///< step-size tolerance (relative to the spacing), see above
+  bool precondition = false; ///< variables scaled by the local frame (optimize.cpp)
 };
 
 /// One accepted L-BFGS iterate (iteration 0 = the starting point).

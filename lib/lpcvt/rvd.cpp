@@ -1,12 +1,16 @@
 #include "lpcvt/rvd.hpp"
 
+#include <limits>
+
 namespace quadapt::lpcvt {
 
-void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2& xi,
-                      const Vec2& xj, int j, std::vector<Vec2>& tmp_v, std::vector<int>& tmp_l) {
+namespace {
+
+/// Clips the polygon (v, label) by the half-plane n . y <= d; the new edge gets `lab`.
+/// Returns false when nothing is left.
+bool clip_halfplane(std::vector<Vec2>& v, std::vector<int>& label, const Vec2& n, double d, int lab,
+                    std::vector<Vec2>& tmp_v, std::vector<int>& tmp_l) {
   const int m = static_cast<int>(v.size());
-  const Vec2 n = xj - xi;
-  const Vec2 mid = 0.5 * (xi + xj);
   double s[64];
   std::vector<double> big;
   double* sd = s;
@@ -16,14 +20,14 @@ void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2&
   }
   int nin = 0;
   for (int k = 0; k < m; ++k) {
-    sd[k] = n.dot(v[k] - mid);
+    sd[k] = n.dot(v[k]) - d;
     if (sd[k] <= 0) ++nin;
   }
-  if (nin == m) return;  // untouched
-  if (nin == 0) {        // entirely on x_j's side
+  if (nin == m) return true;
+  if (nin == 0) {
     v.clear();
     label.clear();
-    return;
+    return false;
   }
   tmp_v.clear();
   tmp_l.clear();
@@ -36,7 +40,7 @@ void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2&
       if (sb > 0) {
         double t = sa / (sa - sb);
         tmp_v.push_back(v[k] + t * (v[k1] - v[k]));
-        tmp_l.push_back(j);
+        tmp_l.push_back(lab);
       }
     } else if (sb <= 0) {
       double t = sa / (sa - sb);
@@ -49,11 +53,32 @@ void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2&
   if (v.size() < 3) {
     v.clear();
     label.clear();
+    return false;
   }
+  return true;
+}
+
+}  // namespace
+
+void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2& xi,
+                      const Vec2& xj, int j, std::vector<Vec2>& tmp_v, std::vector<int>& tmp_l) {
+  const Vec2 n = xj - xi;
+  clip_halfplane(v, label, n, n.dot(0.5 * (xi + xj)), j, tmp_v, tmp_l);
 }
 
 RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites)
-    : bg_(&bg), sites_(&sites), dt_(sites) {
+    : bg_(&bg), sites_(&sites), own_(std::make_unique<DelaunayGraph>(sites, false, true)) {
+  dt_ = own_.get();
+  find_starts();
+}
+
+RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const DelaunayGraph& dt)
+    : bg_(&bg), sites_(&sites), dt_(&dt) {
+  find_starts();
+}
+
+void RestrictedVoronoi::find_starts() {
+  const Background& bg = *bg_;
   std::vector<Vec2> centroids(bg.num_cells());
   for (int q = 0; q < bg.num_cells(); ++q) {
     const IntegrationCell& c = bg.cell(q);
@@ -61,46 +86,74 @@ RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec
     for (int k = 0; k < c.nv; ++k) g += c.v[k];
     centroids[q] = g / c.nv;
   }
-  start_ = dt_.nearest(centroids);
+  start_ = dt_->nearest(centroids);
 }
 
-void RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& ws) const {
-  out.clear();
+
+int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& ws) const {
   const int s0 = start_[q];
-  if (s0 < 0) return;
+  if (s0 < 0) return 0;
   const std::vector<Vec2>& x = *sites_;
-  if (ws.stamp.size() != x.size()) ws.stamp.assign(x.size(), 0);
+  if (ws.stamp.size() != x.size() || ws.gen == std::numeric_limits<int>::max()) {
+    ws.stamp.assign(x.size(), 0);
+    ws.gen = 0;
+  }
+  const int gen = ++ws.gen;
   const IntegrationCell& Q = bg_->cell(q);
+  // Q's edges as half-planes n_e . y <= d_e (inside on the left of the CCW edges)
+  Vec2 qn[4];
+  double qd[4];
+  for (int e = 0; e < Q.nv; ++e) {
+    const Vec2 t = Q.v[(e + 1) % Q.nv] - Q.v[e];
+    qn[e] = Vec2(t.y(), -t.x());
+    qd[e] = qn[e].dot(Q.v[e]);
+  }
+  const bool poly = dt_->has_voronoi();
   ws.queue.clear();
   ws.queue.push_back(s0);
-  ws.stamp[s0] = q + 1;
+  ws.stamp[s0] = gen;
+  int count = 0;
   for (size_t head = 0; head < ws.queue.size(); ++head) {
     const int i = ws.queue[head];
-    RvdPiece p;
+    if (static_cast<int>(out.size()) <= count) out.emplace_back();
+    RvdPiece& p = out[count];
     p.site = i;
     p.cell = q;
-    p.v.assign(Q.v.begin(), Q.v.begin() + Q.nv);
-    p.label.resize(Q.nv);
-    for (int e = 0; e < Q.nv; ++e) p.label[e] = -1 - e;
-    for (const int* j = dt_.nbr_begin(i); j != dt_.nbr_end(i) && !p.v.empty(); ++j)
-      clip_by_bisector(p.v, p.label, x[i], x[*j], *j, ws.tmp_v, ws.tmp_l);
+    const int deg = dt_->degree(i);
+    if (poly && !dt_->on_hull(i) && deg >= 3) {
+      // the Voronoi polygon, clipped by Q
+      const Vec2* c = dt_->vor_begin(i);
+      const int* nb = dt_->nbr_begin(i);
+      p.v.assign(c, c + deg);
+      p.label.resize(deg);
+      for (int k = 0; k < deg; ++k) p.label[k] = nb[k + 1 == deg ? 0 : k + 1];
+      for (int e = 0; e < Q.nv; ++e)
+        if (!clip_halfplane(p.v, p.label, qn[e], qd[e], -1 - e, ws.tmp_v, ws.tmp_l)) break;
+    } else {
+      p.v.assign(Q.v.begin(), Q.v.begin() + Q.nv);
+      p.label.resize(Q.nv);
+      for (int e = 0; e < Q.nv; ++e) p.label[e] = -1 - e;
+      for (const int* j = dt_->nbr_begin(i); j != dt_->nbr_end(i) && !p.v.empty(); ++j)
+        clip_by_bisector(p.v, p.label, x[i], x[*j], *j, ws.tmp_v, ws.tmp_l);
+    }
     if (p.v.empty()) continue;
     for (int l : p.label) {
-      if (l >= 0 && ws.stamp[l] != q + 1) {
-        ws.stamp[l] = q + 1;
+      if (l >= 0 && ws.stamp[l] != gen) {
+        ws.stamp[l] = gen;
         ws.queue.push_back(l);
       }
     }
-    out.push_back(std::move(p));
+    ++count;
   }
+  return count;
 }
 
 std::vector<RvdPiece> RestrictedVoronoi::all_pieces() const {
   std::vector<RvdPiece> all, tmp;
   RvdWorkspace ws;
   for (int q = 0; q < bg_->num_cells(); ++q) {
-    pieces(q, tmp, ws);
-    for (auto& p : tmp) all.push_back(std::move(p));
+    const int n = pieces(q, tmp, ws);
+    for (int k = 0; k < n; ++k) all.push_back(tmp[k]);
   }
   return all;
 }

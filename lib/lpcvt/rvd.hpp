@@ -10,11 +10,17 @@
 // and continue breadth-first with the Delaunay neighbours j whose bisector appears as an edge
 // of the clipped polygon: the cells meeting a convex Q are connected. Every piece is met once.
 //
+// Speed: for a site off the convex hull of the sites the Voronoi polygon is known from the
+// Delaunay triangulation (the circumcentres around it, delaunay.hpp), so its piece is that
+// polygon clipped by Q's edges — and most polygons lie inside one Q, where nothing is clipped.
+// Sites on the hull (unbounded cells) start from Q and are clipped by their bisectors.
+//
 // Each polygon edge carries a label: the bisector with site j (label j >= 0) or edge e of Q
 // (label -1 - e). Vertex k is the intersection of the lines of edges k-1 and k, which is what
 // the gradient needs (lpcvt/energy.hpp): a Q vertex (constant), a bisector/Q-edge intersection
 // (a "clip point", depends on x_i, x_j), or a bisector/bisector intersection (a Voronoi vertex,
 // the circumcentre of x_i, x_j, x_k).
+#include <memory>
 #include <vector>
 
 #include "lpcvt/background.hpp"
@@ -32,7 +38,8 @@ struct RvdPiece {
 
 /// Per-thread scratch space for RestrictedVoronoi::pieces.
 struct RvdWorkspace {
-  std::vector<int> stamp;  ///< per site: last cell that visited it (+1)
+  std::vector<int> stamp;  ///< per site: the call (generation) that last visited it
+  int gen = 0;             ///< generation of the current call
   std::vector<int> queue;
   std::vector<Vec2> tmp_v;
   std::vector<int> tmp_l;
@@ -40,16 +47,20 @@ struct RvdWorkspace {
 
 class RestrictedVoronoi {
  public:
-  /// Builds the Delaunay graph of `sites` and the starting site of every integration cell.
+  /// Builds the Delaunay graph of `sites` (neighbours only) and the starting site of every
+  /// integration cell.
   RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites);
+  /// With the Delaunay graph of `sites` given (built with with_voronoi; kept alive by the caller).
+  RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const DelaunayGraph& dt);
 
-  const DelaunayGraph& delaunay() const { return dt_; }
+  const DelaunayGraph& delaunay() const { return *dt_; }
   const std::vector<Vec2>& sites() const { return *sites_; }
 
   /// The non-empty pieces inside integration cell q, in breadth-first order from the start
-  /// site (deterministic). `out` is cleared first. Thread-safe (const) with one workspace per
-  /// thread.
-  void pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& ws) const;
+  /// site (deterministic), written to out[0..count); returns count. `out` grows as needed and
+  /// never shrinks, so the pieces' vertex buffers are reused between calls (no allocation once
+  /// warm). Thread-safe (const) with one workspace and one `out` per thread.
+  int pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& ws) const;
 
   /// All pieces of all cells (serial; for pictures and tests), ordered by cell.
   std::vector<RvdPiece> all_pieces() const;
@@ -57,8 +68,10 @@ class RestrictedVoronoi {
  private:
   const Background* bg_;
   const std::vector<Vec2>* sites_;
-  DelaunayGraph dt_;
-  std::vector<int> start_;  ///< per integration cell: nearest site to its centroid
+  std::unique_ptr<DelaunayGraph> own_;
+  const DelaunayGraph* dt_ = nullptr;
+  std::vector<int> start_;
+  void find_starts();  ///< per integration cell: nearest site to its centroid
 };
 
 /// Clips the convex CCW polygon (v, label) by the half-plane closer to x_i than to x_j

@@ -12,7 +12,9 @@
 
 namespace quadapt::lpcvt {
 
-enum class SeedMode { Uniform, Density };
+/// Uniform and Density: random (below). Lattice: the frame-aligned lattice (lattice.hpp), made
+/// by run_lpcvt (seed_points treats it as Density).
+enum class SeedMode { Uniform, Density, Lattice };
 
 /// n points strictly inside the domain.
 std::vector<Vec2> seed_points(const Background& bg, int n, SeedMode mode, unsigned seed);

@@ -39,20 +39,22 @@ double incircle(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
 }
 }  // namespace
 
-SplitMergeResult split_merge(const Background& bg, std::vector<Vec2>& sites, int nfixed,
-                             const std::vector<std::array<int, 2>>& boundary_segments,
-                             const SplitMergeOptions& opt) {
-  SplitMergeResult r;
-  r.removed_outside = remove_outside(bg, sites, nfixed);
-  const int n = static_cast<int>(sites.size());
+namespace {
+
+struct MeasuredEdge {
+  int i, j;
+  double L;
+};
+
+/// The Delaunay edges of `sites` measured by eq. 4.12: boundary segments and edges whose
+/// midpoint is outside the domain skipped; with opt.metric_delaunay only edges that are also
+/// Delaunay in the local metric.
+std::vector<MeasuredEdge> measure_edges(const Background& bg, const std::vector<Vec2>& sites, int nfixed,
+                                        const std::vector<std::array<int, 2>>& boundary_segments,
+                                        const SplitMergeOptions& opt) {
   std::set<std::pair<int, int>> bseg;
   for (auto s : boundary_segments) bseg.insert({std::min(s[0], s[1]), std::max(s[0], s[1])});
   DelaunayGraph dt(sites);
-  struct Cand {
-    double badness;
-    int i, j;
-    bool split;
-  };
   // Opposite vertices of each Delaunay edge, for the metric-Delaunay test.
   std::map<std::pair<int, int>, std::array<int, 2>> opposite;
   if (opt.metric_delaunay) {
@@ -63,17 +65,16 @@ SplitMergeResult split_merge(const Background& bg, std::vector<Vec2>& sites, int
         (o[0] < 0 ? o[0] : o[1]) = c;
       }
   }
-  std::vector<Cand> cands;
-  double sum = 0;
-  r.min_length = 1e300;
-  r.max_length = 0;
+  std::vector<MeasuredEdge> out;
+  int hint = -1;
   for (auto e : dt.edges()) {
     const int i = e[0], j = e[1];
     const bool fi = i < nfixed, fj = j < nfixed;
     if (fi && fj && bseg.count({i, j})) continue;
     const Vec2 mid = 0.5 * (sites[i] + sites[j]);
-    const int cm = bg.locate(mid);
+    const int cm = bg.locate(mid, hint);
     if (cm < 0) continue;
+    hint = cm;
     if (opt.metric_delaunay) {
       auto it = opposite.find({i, j});
       if (it != opposite.end() && it->second[0] >= 0 && it->second[1] >= 0) {
@@ -84,27 +85,32 @@ SplitMergeResult split_merge(const Background& bg, std::vector<Vec2>& sites, int
     }
     double L = segment_metric_length(bg, sites[i], sites[j], opt.q, opt.samples);
     if (L < 0) continue;
-    ++r.edges;
-    sum += L;
-    r.min_length = std::min(r.min_length, L);
-    r.max_length = std::max(r.max_length, L);
-    if (L > opt.lmax)
-      cands.push_back({L / opt.lmax, i, j, true});
-    else if (L < opt.lmin && !(fi && fj))
-      cands.push_back({opt.lmin / std::max(L, 1e-300), i, j, false});
+    out.push_back({i, j, L});
   }
-  r.mean_length = r.edges ? sum / r.edges : 0;
-  if (!r.edges) r.min_length = 0;
-  std::stable_sort(cands.begin(), cands.end(), [](const Cand& a, const Cand& b) { return a.badness > b.badness; });
+  return out;
+}
+
+struct Change {
+  double badness;
+  int i, j;
+  bool split;
+};
+
+/// Applies the changes in order, each site touched once; returns (splits, merges).
+std::pair<int, int> apply_changes(std::vector<Vec2>& sites, int nfixed, const std::vector<Change>& cands,
+                                  int limit) {
+  const int n = static_cast<int>(sites.size());
   std::vector<char> flag(n, 0), dead(n, 0);
   std::vector<Vec2> added;
-  for (const Cand& c : cands) {
+  int splits = 0, merges = 0;
+  for (const Change& c : cands) {
+    if (splits + merges >= limit) break;
     if (flag[c.i] || flag[c.j]) continue;
     flag[c.i] = flag[c.j] = 1;
     const Vec2 mid = 0.5 * (sites[c.i] + sites[c.j]);
     if (c.split) {
       added.push_back(mid);
-      ++r.splits;
+      ++splits;
     } else {
       if (c.i >= nfixed && c.j >= nfixed) {
         dead[c.i] = dead[c.j] = 1;
@@ -112,7 +118,7 @@ SplitMergeResult split_merge(const Background& bg, std::vector<Vec2>& sites, int
       } else {
         dead[c.i >= nfixed ? c.i : c.j] = 1;  // keep the fixed boundary site
       }
-      ++r.merges;
+      ++merges;
     }
   }
   std::vector<Vec2> out;
@@ -121,7 +127,61 @@ SplitMergeResult split_merge(const Background& bg, std::vector<Vec2>& sites, int
     if (!dead[i]) out.push_back(sites[i]);
   out.insert(out.end(), added.begin(), added.end());
   sites.swap(out);
+  return {splits, merges};
+}
+
+}  // namespace
+
+SplitMergeResult split_merge(const Background& bg, std::vector<Vec2>& sites, int nfixed,
+                             const std::vector<std::array<int, 2>>& boundary_segments,
+                             const SplitMergeOptions& opt) {
+  SplitMergeResult r;
+  r.removed_outside = remove_outside(bg, sites, nfixed);
+  std::vector<MeasuredEdge> edges = measure_edges(bg, sites, nfixed, boundary_segments, opt);
+  std::vector<Change> cands;
+  double sum = 0;
+  r.min_length = 1e300;
+  r.max_length = 0;
+  for (const MeasuredEdge& e : edges) {
+    const double L = e.L;
+    ++r.edges;
+    sum += L;
+    r.min_length = std::min(r.min_length, L);
+    r.max_length = std::max(r.max_length, L);
+    if (L > opt.lmax)
+      cands.push_back({L / opt.lmax, e.i, e.j, true});
+    else if (L < opt.lmin && !(e.i < nfixed && e.j < nfixed))
+      cands.push_back({opt.lmin / std::max(L, 1e-300), e.i, e.j, false});
+  }
+  r.mean_length = r.edges ? sum / r.edges : 0;
+  if (!r.edges) r.min_length = 0;
+  std::stable_sort(cands.begin(), cands.end(), [](const Change& a, const Change& b) { return a.badness > b.badness; });
+  auto [s, m] = apply_changes(sites, nfixed, cands, static_cast<int>(sites.size()) + 1);
+  r.splits = s;
+  r.merges = m;
   return r;
+}
+
+int adjust_count(const Background& bg, std::vector<Vec2>& sites, int nfixed,
+                 const std::vector<std::array<int, 2>>& boundary_segments, int target,
+                 const SplitMergeOptions& opt) {
+  int change = 0;
+  remove_outside(bg, sites, nfixed);
+  for (int pass = 0; pass < 8; ++pass) {
+    const int diff = target - static_cast<int>(sites.size());
+    if (diff == 0) break;
+    std::vector<MeasuredEdge> edges = measure_edges(bg, sites, nfixed, boundary_segments, opt);
+    std::vector<Change> cands;
+    for (const MeasuredEdge& e : edges) {
+      if (diff > 0) cands.push_back({e.L, e.i, e.j, true});
+      else if (!(e.i < nfixed && e.j < nfixed)) cands.push_back({1 / std::max(e.L, 1e-300), e.i, e.j, false});
+    }
+    std::stable_sort(cands.begin(), cands.end(), [](const Change& a, const Change& b) { return a.badness > b.badness; });
+    auto [s, m] = apply_changes(sites, nfixed, cands, std::abs(diff));
+    if (s + m == 0) break;
+    change += s - m;
+  }
+  return change;
 }
 
 }  // namespace quadapt::lpcvt

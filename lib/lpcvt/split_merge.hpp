@@ -47,6 +47,16 @@ SplitMergeResult split_merge(const Background& bg, std::vector<Vec2>& sites, int
                              const std::vector<std::array<int, 2>>& boundary_segments,
                              const SplitMergeOptions& opt);
 
+/// Brings the number of sites to `target` (beyond the thesis: complexity honesty): when there
+/// are too few, the longest measured Delaunay edges (eq. 4.12, as in split_merge, boundary
+/// segments excluded) get a new site at their midpoint; when there are too many, the shortest
+/// edges are merged (as in split_merge). Each site takes part in one change per pass; passes
+/// repeat until the count is reached (at most 8). Fixed sites stay. Returns the change made
+/// (positive: sites added).
+int adjust_count(const Background& bg, std::vector<Vec2>& sites, int nfixed,
+                 const std::vector<std::array<int, 2>>& boundary_segments, int target,
+                 const SplitMergeOptions& opt);
+
 /// Removes free sites (index >= nfixed) outside the domain, or coinciding with an earlier site;
 /// returns how many.
 int remove_outside(const Background& bg, std::vector<Vec2>& sites, int nfixed);

@@ -8,9 +8,10 @@ trap 'rm -rf "$T"' EXIT
 PY=/usr/bin/python3
 FRAME="$PY $S/tests/cli/lpcvt_frame.py"
 
-# 1. isotropic frame h = 0.025 on the unit square: spacing 4h = 0.1, 121 points requested
+# 1. isotropic frame h = 0.025 on the unit square: spacing 4h = 0.1, 121 points requested;
+#    from random points (--init density) the optimiser converges to the lattice ...
 $FRAME "$T/iso.msh" --n 4 --h1 0.025 --h2 0.025
-lpcvt "$T/iso.msh" -o "$T/iso-tri.msh" 2> "$T/iso.err"
+lpcvt "$T/iso.msh" -o "$T/iso-tri.msh" --init density 2> "$T/iso.err"
 grep -q "cycle 1:" "$T/iso.err"
 $PY - "$T/iso-tri.json" "$T/iso-tri.msh" <<'PY'
 import json, sys
@@ -29,15 +30,25 @@ for name in ("bottom", "right", "top", "left"):
     assert f'"{name}"' in msh, name
 PY
 
+# ... and the lattice start (the default) is that lattice already: no iteration, right angles
+lpcvt "$T/iso.msh" -o "$T/iso-lat.msh" -q
+$PY - "$T/iso-lat.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["converged"] is True and r["iterations"] == 0, (r["converged"], r["iterations"])
+assert r["points"] == 121 and abs(r["largest_angle_metric_median"] - 90) < 1e-9, r
+PY
+
 # 2. the thesis's §6.1 experiment on the 16x16 background: golden figures (rtol 1e-6)
 lpcvt --analytic saddle --sampled -o "$T/saddle.msh" --voronoi "$T/saddle-vor.json" -q
 $PY - "$T/saddle.json" "$T/saddle-figures.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
-keep = ["points", "boundary_points", "triangles", "cycles", "iterations", "energy", "converged",
+keep = ["points", "boundary_points", "triangles", "cycles", "energy", "converged",
         "requested_points", "largest_angle_median"]
 json.dump({k: r[k] for k in keep}, open(sys.argv[2], "w"), indent=1)
-assert r["converged"] and r["cycles"] <= 8
+# (the iteration count moves with rounding-level changes of the code; bounded, not golden)
+assert r["converged"] and r["cycles"] <= 8 and r["iterations"] <= 1000, (r["cycles"], r["iterations"])
 PY
 $PY "$S/tests/cli/golden_compare.py" "$T/saddle-figures.json" "$S/tests/golden/lpcvt/saddle16.json" --rtol 1e-6
 $PY - "$T/saddle-vor.json" <<'PY'
@@ -59,11 +70,11 @@ PY
 
 # 4. an optimiser stopped by the iteration cap: valid mesh, "converged": false, a warning;
 #    --strict turns it into exit code 1 with the mesh still written
-lpcvt "$T/iso.msh" -o "$T/cap.msh" --max-iterations 2 --max-cycles 1 2> "$T/cap.err"
+lpcvt "$T/iso.msh" -o "$T/cap.msh" --init density --max-iterations 2 --max-cycles 1 2> "$T/cap.err"
 grep -q "warning: not converged" "$T/cap.err"
 $PY -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['converged'] is False" "$T/cap.json"
 set +e
-lpcvt "$T/iso.msh" -o "$T/strict.msh" --max-iterations 2 --max-cycles 1 --strict -q
+lpcvt "$T/iso.msh" -o "$T/strict.msh" --init density --max-iterations 2 --max-cycles 1 --strict -q
 rc=$?
 set -e
 [ $rc -eq 1 ] && [ -s "$T/strict.msh" ]

@@ -188,3 +188,33 @@ TEST_CASE("gradient matches finite differences on non-convex domains") {
     CHECK(e < 1e-6);
   }
 }
+
+TEST_CASE("closed-form integration (even p, constant metric) equals the quadrature rule") {
+  for (int kind = 0; kind < 2; ++kind) {
+    Mesh m = kind == 0 ? saddle_square(4) : l_shape();
+    set_frame(m, 0.2, 0.35, 0.4);
+    Background bg = Background::from_frame(m, 1.0, "mem");
+    int nfixed = 0;
+    auto x = sites_for(bg, 40, 21 + kind, nfixed);
+    for (double p : {2.0, 4.0, 6.0, 8.0}) {
+      set_closed_form(false);
+      EnergyResult a = lp_energy(bg, x, p, true);
+      set_closed_form(true);
+      EnergyWorkspace ws;
+      EnergyResult b = lp_energy(bg, x, p, true, &ws);
+      EnergyResult c = lp_energy(bg, x, p, true, &ws);  // reused buffers: the same numbers
+      double gmax = 0, gerr = 0;
+      for (size_t i = 0; i < x.size(); ++i) {
+        gmax = std::max(gmax, a.grad[i].norm());
+        gerr = std::max(gerr, (a.grad[i] - b.grad[i]).norm());
+        CHECK(b.grad[i] == c.grad[i]);
+      }
+      MESSAGE("p = " << p << ": energy " << a.energy << " vs " << b.energy << ", gradient difference "
+                     << gerr / gmax << " (relative to the largest)");
+      // both exact (Dunavant degree 6 up to p = 6, collapsed Gauss of degree p above)
+      CHECK(b.energy == doctest::Approx(a.energy).epsilon(1e-12));
+      CHECK(gerr < 1e-10 * gmax);
+      CHECK(b.energy == c.energy);
+    }
+  }
+}
