@@ -36,9 +36,10 @@ int main(int argc, char** argv) {
       ->required();
   app.add_option("--field", field, "Name of the DG solution field in SOL")->capture_default_str();
   app.add_option("--solver", solver,
-                 "Adjoint linear solver: auto (gmres-2level with diffusion, gmres-bilu0 for pure advection, "
-                 "then umfpack if they do not converge; docs/adjoint.md), gmres-2level, gmres-bilu0, "
-                 "bicgstab-bilu0, gmres-bjacobi, bicgstab-ilut, umfpack, sparselu")
+                 "Adjoint linear solver: auto (pure advection: one exact block sweep downstream first; "
+                 "else gmres-2level, then gmres-bilu0, then umfpack if they do not converge; "
+                 "docs/adjoint.md), gmres-2level, gmres-bilu0, bicgstab-bilu0, gmres-bjacobi, bicgstab-ilut, "
+                 "umfpack, sparselu")
       ->capture_default_str();
   app.add_option("--rtol", opt.solver.rtol, "Relative residual tolerance of iterative solvers")->capture_default_str();
   app.add_option("--max-iterations", opt.solver.max_iterations, "Iteration limit of iterative solvers")
