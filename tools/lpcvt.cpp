@@ -11,6 +11,7 @@
 #include "io/msh.hpp"
 #include "lpcvt/energy.hpp"
 #include "lpcvt/lpcvt.hpp"
+#include "lpcvt/metric_filter.hpp"
 #include "lpcvt/quality.hpp"
 #include "lpcvt/triangulate.hpp"
 #include "mesh/validate.hpp"
@@ -76,16 +77,35 @@ int main(int argc, char** argv) {
                  "complexity/(degree+1)^2 cells (PHiLiP's frame files are normalised and carry no size)")
       ->check(CLI::PositiveNumber);
   app.add_option("--degree", degree, "DG degree P for --complexity (cells = complexity/(P+1)^2)")->check(CLI::Range(0, 20));
+  int smooth = 0;
+  double gradation = 0;
+  app.add_option("--smooth", smooth,
+                 "Log-Euclidean smoothing of the metric M^T M across background cells: passes (0 = none)")
+      ->capture_default_str()->check(CLI::Range(0, 1000));
+  app.add_option("--gradation", gradation,
+                 "Anisotropic size gradation of the metric: sizes grow at most by this factor per unit metric "
+                 "length between neighbouring background cells (metric intersection; 0 = none); the point count is kept")
+      ->capture_default_str();
+  std::string frame_out;
+  app.add_option("--write-frame", frame_out,
+                 "Also write the frame actually meshed (after --smooth/--gradation/--complexity) as Vinv in the "
+                 "quadapt convention (4 M_eff), e.g. for meshquality --frame");
   bool no_exact = false;
   app.add_flag("--no-exact-count", no_exact,
                "Do not set the point count to the requested one (multilevel levels, before the final minimisation)");
   app.add_option("--max-cycles", opt.max_cycles, "Split/merge cycles at most")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--max-iterations", opt.lbfgs.max_iterations, "L-BFGS iterations per cycle at most")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+  auto* omaxit = app.add_option("--max-iterations", opt.lbfgs.max_iterations,
+                                 "L-BFGS iterations per minimisation at most (default 100 for frames, 500 with --analytic)")
+                      ->check(CLI::PositiveNumber);
+  double gamma = -1;
+  app.add_option("--weight", gamma,
+                 "Energy weight |det M|^gamma (energy.hpp): 1 (frames' default) gives one point per unit metric "
+                 "area in graded frames; 0 is the thesis's energy (--analytic's default)");
   app.add_flag("--precondition", opt.lbfgs.precondition, "Scale every site's variables by its local frame");
-  app.add_option("--delta", opt.lbfgs.delta, "Stop when the energy falls by less than this (relative) over --past iterations")
-      ->capture_default_str();
-  app.add_option("--past", opt.lbfgs.past, "Iterations of the --delta test")->capture_default_str();
+  auto* odelta = app.add_option("--delta", opt.lbfgs.delta,
+                                "Stop when the energy falls by less than this (relative) over --past iterations "
+                                "(default 1e-3 for frames, 1e-10 with --analytic)");
+  auto* opast = app.add_option("--past", opt.lbfgs.past, "Iterations of the --delta test (default 10 for frames, 5 with --analytic)");
   app.add_option("--gtol", opt.lbfgs.gtol, "Gradient tolerance (per site, relative)")->capture_default_str();
   auto* olmin = app.add_option("--lmin", opt.split.lmin,
                                "Merge edges shorter than this (metric units, eq. 4.12; default 0.25, "
@@ -93,6 +113,9 @@ int main(int argc, char** argv) {
   auto* olmax = app.add_option("--lmax", opt.split.lmax,
                                "Split edges longer than this (default 2, sqrt(2) with --analytic)");
   app.add_option("--change-tol", opt.change_tol, "Fraction of edges changed counted as settled")->capture_default_str();
+  app.add_option("--ramp-after", opt.ramp_after,
+                 "Cycles after which the settled fraction ramps up by 0.5% per cycle to 5% (thesis §4.5)")
+      ->capture_default_str();
   app.add_option("--voronoi", voronoi_out, "Also write the initial and final clipped Voronoi diagrams (JSON)");
   app.add_flag("--strict", strict, "Exit code 1 when the optimiser stopped early (the mesh is written anyway)");
 
@@ -107,10 +130,22 @@ int main(int argc, char** argv) {
           fs::path(voronoi_out).lexically_normal() == fs::path(out).lexically_normal())
         throw InputError("", "--voronoi " + voronoi_out + " would overwrite the mesh or the report");
     }
+    if (!frame_out.empty()) {
+      tool.output(frame_out);
+      if (std::filesystem::path(frame_out).lexically_normal() == std::filesystem::path(out).lexically_normal())
+        throw InputError("", "--write-frame " + frame_out + " would overwrite the mesh");
+    }
     if (!(opt.split.lmin >= 0 && opt.split.lmax > opt.split.lmin))
       throw InputError("", "need 0 <= --lmin < --lmax");
     if ((complexity > 0) != (degree >= 0)) throw InputError("", "--complexity and --degree go together");
     opt.exact_count = !no_exact;
+    if (analytic.empty()) {  // frames: a lattice start needs a short relaxation (docs/lpcvt.md, Convergence)
+      if (!omaxit->count()) opt.lbfgs.max_iterations = 100;
+      if (!odelta->count()) opt.lbfgs.delta = 1e-3;
+      if (!opast->count()) opt.lbfgs.past = 10;
+    }
+    opt.lbfgs.gamma = gamma >= 0 ? gamma : (analytic.empty() ? 1.0 : 0.0);
+    tool.option("weight", opt.lbfgs.gamma);
 
     std::unique_ptr<Background> bg;
     {
@@ -139,6 +174,27 @@ int main(int argc, char** argv) {
                                                                 : SeedMode::Density;
         opt.multilevel = init == "multilevel";
         tool.option("metric", "frame Vinv");
+      }
+      if (smooth > 0 || gradation > 0) {
+        if (!analytic.empty() && !sampled) throw InputError("", "--smooth/--gradation need a frame or --sampled");
+        if (gradation != 0 && !(gradation > 1)) throw InputError("", "--gradation must be > 1");
+        if (smooth > 0) {
+          FilterReport f = smooth_metric(*bg, smooth);
+          tool.report()["smoothing"] = {{"passes", smooth}, {"cells_changed", f.cells_changed}, {"rescale", f.rescale},
+                                        {"max_neighbour_size_ratio_before", f.max_ratio_before},
+                                        {"max_neighbour_size_ratio_after", f.max_ratio_after}};
+          tool.log("metric smoothed (" + std::to_string(smooth) + " log-Euclidean passes): largest neighbour size ratio " +
+                   std::to_string(f.max_ratio_before) + " -> " + std::to_string(f.max_ratio_after));
+        }
+        if (gradation > 0) {
+          FilterReport f = grade_metric(*bg, gradation);
+          tool.report()["gradation"] = {{"growth", gradation}, {"updates", f.passes}, {"cells_changed", f.cells_changed}, {"rescale", f.rescale},
+                                        {"max_neighbour_size_ratio_before", f.max_ratio_before},
+                                        {"max_neighbour_size_ratio_after", f.max_ratio_after}};
+          tool.log("metric graded (growth " + std::to_string(gradation) + " per unit length, " + std::to_string(f.passes) +
+                   " updates): " + std::to_string(f.cells_changed) + " cells refined, largest neighbour size ratio " + std::to_string(f.max_ratio_before) + " -> " +
+                   std::to_string(f.max_ratio_after));
+        }
       }
       // Final all-quad cells the frame asks for: 4 x metric area of M_eff (docs/lpcvt.md, Sizes).
       const double frame_cells = 4 * bg->metric_area();
@@ -196,6 +252,24 @@ int main(int argc, char** argv) {
         atomic_write(voronoi_out, [&](std::ostream& os) { os << v.dump() << "\n"; });
       }
       write_msh(r.mesh, out);
+      if (!frame_out.empty()) {
+        Mesh fm = bg->mesh();
+        fm.clear_fields();
+        CellField f;
+        f.name = "Vinv";
+        f.ncomp = 9;
+        f.values.assign(static_cast<size_t>(fm.num_cells()) * 9, 0.0);
+        for (int c = 0; c < fm.num_cells(); ++c) {
+          const Mat2 M = 4 * bg->mesh_cell_metric(c);
+          f(c, 0) = M(0, 0);
+          f(c, 1) = M(0, 1);
+          f(c, 3) = M(1, 0);
+          f(c, 4) = M(1, 1);
+          f(c, 8) = 1;
+        }
+        fm.cell_fields.push_back(f);
+        write_msh(fm, frame_out);
+      }
     }
     tool.log("largest triangle angles (median): " + std::to_string(am.median_largest) + " deg in the metric, " +
              std::to_string(ap.median_largest) + " deg in physical space; Voronoi edges off the metric axes by " +

@@ -64,7 +64,9 @@ void Background::build(const Mesh& m) {
   }
   const double diam = (hi_ - lo_).norm();
   tol_ = 1e-10 * diam;
+  first_cell_.assign(m.num_cells(), -1);
   for (int c = 0; c < m.num_cells(); ++c) {
+    first_cell_[c] = static_cast<int>(cells_.size());
     const Cell& cl = m.cells[c];
     if (cl.nv != 3 && cl.nv != 4) throw InputError("", "background " + where(m, c) + " is neither a triangle nor a quad");
     for (int k = 0; k < cl.nv; ++k)
@@ -221,6 +223,13 @@ Background Background::sampled(const Mesh& m, const AnalyticMetric& f, double sc
   for (IntegrationCell& ic : bg.cells_) ic.M = scale * f.M(cell_centroid(m, ic.mesh_cell));
   bg.finish();
   return bg;
+}
+
+void Background::set_mesh_cell_metrics(const std::vector<Mat2>& M) {
+  if (analytic_) throw InputError("", "metric filters need a piecewise-constant metric");
+  if (static_cast<int>(M.size()) != mesh_.num_cells()) throw InputError("", "one metric per background cell expected");
+  for (IntegrationCell& ic : cells_) ic.M = M[ic.mesh_cell];
+  finish();
 }
 
 Background Background::scaled(double f) const {

@@ -96,6 +96,12 @@ class Background {
   /// levels of the multilevel start (lpcvt.hpp).
   Background scaled(double f) const;
 
+  /// The effective metric of background (mesh) cell c (its first integration cell's).
+  Mat2 mesh_cell_metric(int c) const { return cells_[first_cell_[c]].M; }
+  /// Replaces the effective metric of every background cell (frame mode only; one per mesh
+  /// cell) and recomputes the metric area (lpcvt/metric_filter.hpp).
+  void set_mesh_cell_metrics(const std::vector<Mat2>& M);
+
   const Mesh& mesh() const { return mesh_; }
   int num_cells() const { return static_cast<int>(cells_.size()); }
   const IntegrationCell& cell(int c) const { return cells_[c]; }
@@ -130,6 +136,7 @@ class Background {
 
   Mesh mesh_;
   std::vector<IntegrationCell> cells_;
+  std::vector<int> first_cell_;  ///< per mesh cell: its first integration cell
   std::shared_ptr<const AnalyticMetric> analytic_;
   double scale_ = 1;
   double area_ = 0, metric_area_ = 0;

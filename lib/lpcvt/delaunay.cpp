@@ -156,22 +156,48 @@ bool DelaunayGraph::update(const std::vector<Vec2>& sites, int* flips) {
   if (flips) *flips = 0;
   DT& dt = impl_->dt;
   const int n = static_cast<int>(hidden_.size());
-  bool ok = static_cast<int>(sites.size()) == n && dt.dimension() == 2 &&
-            static_cast<int>(dt.number_of_vertices()) == n;
-  if (ok)
-    for (int i = 0; i < n && ok; ++i) {
-      const Point& p = impl_->vh[i]->point();
-      if (hull_[i] && (p.x() != sites[i].x() || p.y() != sites[i].y())) ok = false;
-    }
-  if (ok) {
-    for (int i = 0; i < n; ++i) impl_->vh[i]->set_point(Point(sites[i].x(), sites[i].y()));
-    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end() && ok; ++f)
-      if (CGAL::orientation(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()) != CGAL::LEFT_TURN)
-        ok = false;
-  }
+  const bool ok = static_cast<int>(sites.size()) == n && dt.dimension() == 2 &&
+                  static_cast<int>(dt.number_of_vertices()) == n;
   if (!ok) {
     build(sites);
     return false;
+  }
+  // Sites on the convex hull that move, and the vertices of triangles the move would invert,
+  // stay at their old positions (the set grows until no triangle is inverted): the
+  // triangulation stays valid with the same hull, the flips make it Delaunay, and these sites
+  // are moved afterwards one by one (CGAL's move keeps the triangulation Delaunay).
+  std::vector<Point> old(n);
+  std::vector<char> deferred(n, 0);
+  std::vector<int> later;
+  for (int i = 0; i < n; ++i) {
+    old[i] = impl_->vh[i]->point();
+    const Point p(sites[i].x(), sites[i].y());
+    if (hull_[i] && p != old[i]) {
+      deferred[i] = 1;
+      later.push_back(i);
+    } else {
+      impl_->vh[i]->set_point(p);
+    }
+  }
+  for (int round = 0;; ++round) {
+    bool inverted = false;
+    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+      if (CGAL::orientation(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()) != CGAL::LEFT_TURN) {
+        inverted = true;
+        for (int k = 0; k < 3; ++k) {
+          const int i = f->vertex(k)->info();
+          if (!deferred[i]) {
+            deferred[i] = 1;
+            later.push_back(i);
+            impl_->vh[i]->set_point(old[i]);
+          }
+        }
+      }
+    if (!inverted) break;
+    if (round > 20 || static_cast<int>(later.size()) > n / 20 + 10) {
+      build(sites);
+      return false;
+    }
   }
   // Lawson flips until every interior edge is (symbolically perturbed) Delaunay.
   std::vector<std::pair<DT::Face_handle, int>> stack;
@@ -194,6 +220,15 @@ bool DelaunayGraph::update(const std::vector<Vec2>& sites, int* flips) {
       stack.emplace_back(g, k);
     }
     if (nflip > 4 * n + 1000) {  // cannot happen for a valid start; be safe
+      build(sites);
+      return false;
+    }
+  }
+  std::sort(later.begin(), later.end());
+  for (int i : later) {
+    const Point p(sites[i].x(), sites[i].y());
+    // (in dimension 2 CGAL keeps the vertex handle; another handle means a collision)
+    if (dt.move_if_no_collision(impl_->vh[i], p) != impl_->vh[i]) {
       build(sites);
       return false;
     }

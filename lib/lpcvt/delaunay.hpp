@@ -24,14 +24,15 @@ class DelaunayGraph {
   DelaunayGraph(DelaunayGraph&&) noexcept;
   DelaunayGraph& operator=(DelaunayGraph&&) noexcept;
 
-  /// Moves the sites to `sites` (same count) and restores the Delaunay property by edge flips
-  /// (Lawson), keeping the triangulation: the "reuse between evaluations where points move
-  /// little" of the energy evaluation. Possible when no site is hidden, the sites on the convex
-  /// hull have not moved and no triangle is inverted by the move (then the flipped
-  /// triangulation is the Delaunay triangulation of the new sites: the symbolic perturbation
-  /// makes it unique, and the neighbour lists are stored from the smallest neighbour on, so the
-  /// result is the same as a rebuild). Otherwise rebuilds from scratch. Returns true when the
-  /// flips sufficed. `flips` receives the number of flips.
+  /// Moves the sites to `sites` (same count) keeping the triangulation: the "reuse between
+  /// evaluations where points move little" of the energy evaluation. The sites are moved where
+  /// no triangle inverts and the hull stays (the others, at most 5% + 10, stay put for now), the
+  /// Delaunay property is restored by edge flips (Lawson), and the remaining sites are moved one
+  /// by one with CGAL's move. The result is the Delaunay triangulation of the new sites (unique
+  /// under CGAL's symbolic perturbation; the neighbour lists start at the smallest neighbour, so
+  /// the tables are the same as after a rebuild). Rebuilds from scratch when there are hidden
+  /// (duplicate) sites, too many inverted triangles, or a collision. Returns true when the update
+  /// sufficed. `flips` receives the number of flips.
   bool update(const std::vector<Vec2>& sites, int* flips = nullptr);
 
   int num_sites() const { return static_cast<int>(ptr_.size()) - 1; }

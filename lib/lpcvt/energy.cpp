@@ -107,7 +107,7 @@ void chain_vertices(const RvdPiece& pc, const Background& bg, const std::vector<
 /// Quadrature path (analytic metrics, any p): returns the piece's energy, appends gradient
 /// contributions when `out` != null.
 double integrate_piece_rule(const RvdPiece& pc, const Background& bg, const std::vector<Vec2>& x,
-                            double p, const TriangleRule& rule, ContribBuf* out,
+                            double p, double gamma, const TriangleRule& rule, ContribBuf* out,
                             std::vector<Vec2>& G, std::vector<Vec2>& acc) {
   const int m = static_cast<int>(pc.v.size());
   const Vec2& xi = x[pc.site];
@@ -132,13 +132,20 @@ double integrate_piece_rule(const RvdPiece& pc, const Background& bg, const std:
       double f0, g0, f1, g1;
       power(F.x(), p, f0, g0);
       power(F.y(), p, f1, g1);
-      const double w = rule.w[q];
+      // weight omega = |det M(y)|^gamma (1 when gamma = 0)
+      double omega = 1;
+      if (gamma != 0) omega = std::pow(std::abs(M.determinant()), gamma);
+      const double w = rule.w[q] * omega;
       Et += w * (f0 + f1);
       if (!out) continue;
       const Vec2 g(g0, g1);
       Vec2 gy = M.transpose() * g;  // d f / d y through (y - x)
       gxt -= w * gy;
       if (analytic) gy += Vec2(g.dot(d0 * d), g.dot(d1 * d));
+      if (analytic && gamma != 0) {  // d omega / dy = gamma omega tr(M^-1 dM/dy)
+        const Mat2 Mi = M.inverse();
+        gy += (gamma * (f0 + f1)) * Vec2((Mi * d0).trace(), (Mi * d1).trace());
+      }
       GA += (w * l[0]) * gy;
       GB += (w * l[1]) * gy;
       GC += (w * l[2]) * gy;
@@ -183,7 +190,7 @@ inline double dh(const double* h, double z) {
 /// Closed-form path (constant metric on the piece, even integer P): see energy.hpp.
 template <int P>
 double integrate_piece_closed(const RvdPiece& pc, const Background& bg, const std::vector<Vec2>& x,
-                              ContribBuf* out, std::vector<Vec2>& G, std::vector<Vec2>& F,
+                              double gamma, ContribBuf* out, std::vector<Vec2>& G, std::vector<Vec2>& F,
                               std::vector<Vec2>& acc) {
   const int m = static_cast<int>(pc.v.size());
   const Vec2& xi = x[pc.site];
@@ -216,20 +223,21 @@ double integrate_piece_closed(const RvdPiece& pc, const Background& bg, const st
     G[m + t] += 0.5 * Et * dJB;
     G[m + t + 1] += 0.5 * Et * dJC;
   }
-  if (!out) return E;
+  const double omega = gamma != 0 ? std::pow(std::abs(M.determinant()), gamma) : 1.0;  // constant weight
+  if (!out) return omega * E;
   Vec2 sumF = Vec2::Zero();
   for (int k = 0; k < m; ++k) {
     sumF += G[k];
-    G[k] = M.transpose() * G[k] + G[m + k];  // dE/dv_k
+    G[k] = omega * (M.transpose() * G[k] + G[m + k]);  // dE/dv_k
   }
-  Vec2 gi = -(M.transpose() * sumF);
+  Vec2 gi = -omega * (M.transpose() * sumF);
   G.resize(m);
   chain_vertices(pc, bg, x, G, gi, acc, *out);
   out->push(pc.site, gi);
-  return E;
+  return omega * E;
 }
 
-using ClosedFn = double (*)(const RvdPiece&, const Background&, const std::vector<Vec2>&, ContribBuf*,
+using ClosedFn = double (*)(const RvdPiece&, const Background&, const std::vector<Vec2>&, double, ContribBuf*,
                             std::vector<Vec2>&, std::vector<Vec2>&, std::vector<Vec2>&);
 
 ClosedFn closed_for(int p) {
@@ -261,7 +269,7 @@ EnergyWorkspace::EnergyWorkspace() : impl(std::make_unique<Impl>()) {}
 EnergyWorkspace::~EnergyWorkspace() = default;
 
 EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, double p,
-                       bool gradient, EnergyWorkspace* ws) {
+                       bool gradient, EnergyWorkspace* ws, double gamma) {
   EnergyWorkspace local;
   EnergyWorkspace::Impl& W = ws ? *ws->impl : *local.impl;
   const std::vector<Vec2>& x = rvd.sites();
@@ -290,8 +298,8 @@ EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, doubl
       double e = 0;
       ContribBuf* out = gradient ? &W.contrib[q] : nullptr;
       for (int k = 0; k < n; ++k)
-        e += closed ? closed(T.pieces[k], bg, x, out, T.G, T.F, T.acc)
-                    : integrate_piece_rule(T.pieces[k], bg, x, p, rule, out, T.G, T.acc);
+        e += closed ? closed(T.pieces[k], bg, x, gamma, out, T.G, T.F, T.acc)
+                    : integrate_piece_rule(T.pieces[k], bg, x, p, gamma, rule, out, T.G, T.acc);
       eq[q] = e;
     }
   }
@@ -315,7 +323,7 @@ EnergyTimers g_timers;
 EnergyTimers energy_timers() { return g_timers; }
 
 EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, double p,
-                       bool gradient, EnergyWorkspace* ws) {
+                       bool gradient, EnergyWorkspace* ws, double gamma) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   std::unique_ptr<RestrictedVoronoi> rvd;
@@ -334,7 +342,7 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
     rvd = std::make_unique<RestrictedVoronoi>(bg, sites);
   }
   const auto t1 = Clock::now();
-  EnergyResult r = lp_energy(*rvd, bg, p, gradient, ws);
+  EnergyResult r = lp_energy(*rvd, bg, p, gradient, ws, gamma);
   const auto t2 = Clock::now();
   g_timers.delaunay += std::chrono::duration<double>(t1 - t0).count();
   if (ws) {
@@ -349,7 +357,7 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
 double piece_energy(const RvdPiece& piece, const Background& bg, const Vec2& x_site, double p) {
   std::vector<Vec2> x(static_cast<size_t>(piece.site) + 1, x_site);
   std::vector<Vec2> G, acc;
-  return integrate_piece_rule(piece, bg, x, p, rule_for_exponent(p), nullptr, G, acc);
+  return integrate_piece_rule(piece, bg, x, p, 0.0, rule_for_exponent(p), nullptr, G, acc);
 }
 
 }  // namespace quadapt::lpcvt

@@ -3,6 +3,7 @@
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include <algorithm>
 #include <deque>
 
 namespace quadapt::lpcvt {
@@ -14,33 +15,15 @@ using Point = K::Point_2;
 using VH = DT::Vertex_handle;
 }  // namespace
 
-Vec2 lattice_seed(const Background& bg) {
-  const Vec2 mid = 0.5 * (bg.lo() + bg.hi());
-  Vec2 best = mid;
-  double bd = 1e300;
-  for (int q = 0; q < bg.num_cells(); ++q) {
-    const IntegrationCell& c = bg.cell(q);
-    Vec2 g = Vec2::Zero();
-    for (int k = 0; k < c.nv; ++k) g += c.v[k] / c.nv;
-    const double d = (g - mid).squaredNorm();
-    if (d < bd) {
-      bd = d;
-      best = g;
-    }
-  }
-  if (bg.inside(mid)) return mid;
-  return best;
-}
-
-std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& fixed, const Vec2& seed,
-                                 double delta, int max_points) {
+std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& fixed, double delta,
+                                 int max_points) {
   std::vector<Vec2> out;
   DT dt;
   VH hint;
   for (const Vec2& p : fixed) hint = dt.insert(Point(p.x(), p.y()), hint != VH() ? hint->face() : DT::Face_handle());
   std::vector<VH> visited;
   // True when a point lies within metric distance delta of y (metric M at y).
-  auto crowded = [&](const Vec2& y, const Mat2& M, double R, VH near_hint) -> bool {
+  auto crowded = [&](const Vec2& y, const Mat2& M, double R, VH near_hint, double delta) -> bool {
     if (dt.number_of_vertices() == 0) return false;
     const Point py(y.x(), y.y());
     VH v0 = dt.nearest_vertex(py, near_hint != VH() ? near_hint->face() : DT::Face_handle());
@@ -76,18 +59,32 @@ std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& 
     VH vh;
   };
   std::deque<Item> queue;
-  const int c0 = bg.locate(seed);
-  if (c0 < 0) return out;
-  {
-    const Mat2 M = bg.metric(c0, seed);
-    const double R = delta * M.inverse().norm();
-    if (!crowded(seed, M, R, hint)) {
-      hint = dt.insert(Point(seed.x(), seed.y()), hint != VH() ? hint->face() : DT::Face_handle());
-      out.push_back(seed);
-      queue.push_back({seed, c0, hint});
+  // seeds: integration cells' centroids, finest metric first
+  std::vector<std::pair<double, int>> order;
+  for (int q = 0; q < bg.num_cells(); ++q) order.emplace_back(-std::abs(bg.cell(q).M.determinant()), q);
+  std::sort(order.begin(), order.end());
+  size_t next_seed = 0;
+  while (static_cast<int>(out.size()) < max_points) {
+    if (queue.empty()) {
+      // the next seed that is not crowded
+      bool found = false;
+      while (next_seed < order.size() && !found) {
+        const int q = order[next_seed++].second;
+        const IntegrationCell& ic = bg.cell(q);
+        Vec2 y = Vec2::Zero();
+        for (int k = 0; k < ic.nv; ++k) y += ic.v[k] / ic.nv;
+        const Mat2 M = bg.metric(q, y);
+        const double ds = std::max(1.0, delta);  // a new seed keeps a whole unit off
+        const double R = ds * M.inverse().norm();
+        if (crowded(y, M, R, hint, ds)) continue;
+        hint = dt.insert(Point(y.x(), y.y()), hint != VH() ? hint->face() : DT::Face_handle());
+        out.push_back(y);
+        queue.push_back({y, q, hint});
+        found = true;
+      }
+      if (!found) break;
+      continue;
     }
-  }
-  while (!queue.empty() && static_cast<int>(out.size()) < max_points) {
     const Item it = queue.front();
     queue.pop_front();
     const Mat2 V = bg.metric(it.cell, it.p).inverse();
@@ -96,10 +93,12 @@ std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& 
       const int c = bg.locate(y, it.cell);
       if (c < 0) continue;
       const Mat2 M = bg.metric(c, y);
-      // Euclidean radius of the metric ball of radius delta: delta * largest singular value of M^-1
+      // Euclidean radius of the metric ball of radius delta: delta * |M^-1| (Frobenius, >= the
+      // largest singular value)
       const double R = delta * M.inverse().norm();
-      if (crowded(y, M, R, it.vh)) continue;
+      if (crowded(y, M, R, it.vh, delta)) continue;
       VH vh = dt.insert(Point(y.x(), y.y()), it.vh->face());
+      hint = vh;
       out.push_back(y);
       queue.push_back({y, c, vh});
       if (static_cast<int>(out.size()) >= max_points) break;

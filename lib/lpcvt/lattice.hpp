@@ -4,14 +4,19 @@
 //
 // At the optimum of the L_p-CVT energy for a constant metric the sites form the lattice
 // x0 + V_eff Z^2 (V_eff = M_eff^-1, unit metric spacing along the frame's axes, the Voronoi cells
-// the frame's parallelograms). The growth starts from one interior seed and, for every accepted
+// the frame's parallelograms). The growth starts from a seed and, for every accepted
 // point p, proposes its four lattice neighbours p +- V(p) e1, p +- V(p) e2 (V at p, so the lattice
 // follows the frame as it turns and grades). A proposal y is accepted when it lies inside the
 // domain and no point (the fixed boundary points included) is within metric distance `delta` of
 // it, |M_eff(y) (q - y)|_2 < delta (found by a range search on an incremental Delaunay
 // triangulation of the accepted points: a breadth-first walk from the nearest point over the
 // points within the Euclidean radius delta * |V(y)|_2). Proposals are processed first in, first
-// out, so the lattice is grown ring by ring from the seed; it is deterministic.
+// out, so the lattice is grown ring by ring from the seed; it is deterministic. Seeds: the
+// centroids of the background cells, finest metric (largest |det M|) first; a seed is used when
+// no point is within one metric unit of it once the growth from the previous seeds has stopped,
+// so the finest region sets the lattice and every region the growth cannot reach gets its own.
+// delta = 0.75 rejects the centre of a lattice square (distance 0.71) and accepts the lattice
+// neighbours (1) with some slack where the frame grades.
 //
 // Where the frame is constant the result is the optimal lattice itself, aligned with the frame:
 // the minimisation only has to relax the defect lines where the frame turns or jumps and the
@@ -23,13 +28,8 @@
 
 namespace quadapt::lpcvt {
 
-/// The interior points grown from `seed` (inside the domain) given the fixed points `fixed`;
-/// at most `max_points` (stops growing beyond).
-std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& fixed, const Vec2& seed,
-                                 double delta = 0.6, int max_points = 10000000);
-
-/// A seed for lattice_points: the domain point nearest to the centre of the bounding box among
-/// the background cells' centroids.
-Vec2 lattice_seed(const Background& bg);
+/// The interior points grown (above) given the fixed points `fixed`; at most `max_points`.
+std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& fixed,
+                                 double delta = 0.75, int max_points = 10000000);
 
 }  // namespace quadapt::lpcvt

@@ -111,7 +111,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
       if (n0 < 0 || nlevels > 0) n0 = std::max(1, target_interior);
       std::vector<Vec2> seeds;
       if (opt.seed_mode == SeedMode::Lattice) {
-        seeds = lattice_points(*lbg, sites, lattice_seed(*lbg), opt.lattice_delta, 4 * n0 + 100);
+        seeds = lattice_points(*lbg, sites, opt.lattice_delta, 4 * n0 + 100);
         lrec->start_points = static_cast<int>(seeds.size()) + nfixed;
         sites.insert(sites.end(), seeds.begin(), seeds.end());
         if (opt.exact_count && opt.initial_points < 0)

@@ -38,13 +38,13 @@ struct LpcvtOptions {
   SplitMergeOptions split;      ///< lmin, lmax (q is set to p)
   double change_tol = 0.02;     ///< fraction of edges split or merged counted as "no change"
   double change_tol_max = 0.05; ///< ramp limit
-  int ramp_after = 10;          ///< cycles after which the tolerance ramps (+0.5% per cycle)
+  int ramp_after = 5;           ///< cycles after which the tolerance ramps (+0.5% per cycle)
   double corner_angle = 30;     ///< degrees: boundary corners split curves
   int boundary_samples = 8;     ///< samples per background edge (analytic metrics)
   bool polish = true;           ///< minimise once more after the last split/merge if it changed points
   bool multilevel = false;      ///< multilevel start (above); the coarsest level uses seed_mode
   int coarse_points = 250;      ///< multilevel: interior points of the coarsest level, at least
-  double lattice_delta = 0.6;   ///< SeedMode::Lattice: rejection distance (metric units)
+  double lattice_delta = 0.75;   ///< SeedMode::Lattice: rejection distance (metric units)
   bool exact_count = true;      ///< set the point count to the requested one at the start of each
                                 ///< level (multilevel) and before the polish, see adjust_count
 };

@@ -23,7 +23,7 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
   const int n = static_cast<int>(sites.size());
   const int nfree = n - nfixed;
   if (nfree <= 0) {
-    EnergyResult e = lp_energy(bg, sites, p, false);
+    EnergyResult e = lp_energy(bg, sites, p, false, nullptr, opt.gamma);
     res.energy = e.energy;
     res.converged = true;
     res.stop = "no free sites";
@@ -52,7 +52,7 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
   EnergyWorkspace ews;
   auto f = [&](const VecX& z, VecX& gz) -> double {
     for (int i = 0; i < nfree; ++i) work[nfixed + i] = x0[nfixed + i] + P[i] * Vec2(z[2 * i], z[2 * i + 1]);
-    EnergyResult e = lp_energy(bg, work, p, true, &ews);
+    EnergyResult e = lp_energy(bg, work, p, true, &ews, opt.gamma);
     ++evals;
     gz.resize(2 * nfree);
     for (int i = 0; i < nfree; ++i) {

@@ -32,6 +32,7 @@ struct LbfgsOptions {
   int past = 5;
   int memory = 7;            ///< L-BFGS correction pairs
   bool precondition = false; ///< variables scaled by the local frame (optimize.cpp)
+  double gamma = 0;          ///< energy weight |det M|^gamma (energy.hpp); 0 = the thesis's energy
 };
 
 /// One accepted L-BFGS iterate (iteration 0 = the starting point).

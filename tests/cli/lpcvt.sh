@@ -9,9 +9,9 @@ PY=/usr/bin/python3
 FRAME="$PY $S/tests/cli/lpcvt_frame.py"
 
 # 1. isotropic frame h = 0.025 on the unit square: spacing 4h = 0.1, 121 points requested;
-#    from random points (--init density) the optimiser converges to the lattice ...
+#    from random points (--init density, tight tolerances) the optimiser converges to the lattice ...
 $FRAME "$T/iso.msh" --n 4 --h1 0.025 --h2 0.025
-lpcvt "$T/iso.msh" -o "$T/iso-tri.msh" --init density 2> "$T/iso.err"
+lpcvt "$T/iso.msh" -o "$T/iso-tri.msh" --init density --delta 1e-10 --past 5 --max-iterations 500 2> "$T/iso.err"
 grep -q "cycle 1:" "$T/iso.err"
 $PY - "$T/iso-tri.json" "$T/iso-tri.msh" <<'PY'
 import json, sys
@@ -30,13 +30,15 @@ for name in ("bottom", "right", "top", "left"):
     assert f'"{name}"' in msh, name
 PY
 
-# ... and the lattice start (the default) is that lattice already: no iteration, right angles
+# ... and the lattice start (the default) is that lattice up to a shift: few iterations, every
+# triangle's largest angle in [80, 100] degrees (median 90)
 lpcvt "$T/iso.msh" -o "$T/iso-lat.msh" -q
 $PY - "$T/iso-lat.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
-assert r["converged"] is True and r["iterations"] == 0, (r["converged"], r["iterations"])
-assert r["points"] == 121 and abs(r["largest_angle_metric_median"] - 90) < 1e-9, r
+assert r["converged"] is True and r["iterations"] < 50, (r["converged"], r["iterations"])
+assert r["points"] == 121 and abs(r["largest_angle_metric_median"] - 90) < 0.1, r
+assert r["largest_angle_metric_80_100"] == 1.0, r["largest_angle_metric_80_100"]
 PY
 
 # 2. the thesis's §6.1 experiment on the 16x16 background: golden figures (rtol 1e-6)

@@ -1,0 +1,156 @@
+#include "lpcvt/metric_filter.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+#include <deque>
+
+#include "core/error.hpp"
+#include "mesh/topology.hpp"
+
+namespace quadapt::lpcvt {
+
+namespace {
+
+using Sym = Eigen::Matrix2d;
+
+Sym sym_log(const Sym& A) {
+  Eigen::SelfAdjointEigenSolver<Sym> es(A);
+  const Eigen::Vector2d l = es.eigenvalues().array().log();
+  return es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
+}
+
+double mean_size(const Mat2& M) { return 1.0 / std::sqrt(std::abs(M.determinant())); }
+
+std::vector<std::vector<int>> neighbours(const Background& bg) {
+  Topology t = build_topology(bg.mesh());
+  std::vector<std::vector<int>> nb(bg.mesh().num_cells());
+  for (int c = 0; c < bg.mesh().num_cells(); ++c) nb[c] = t.neighbours(c);
+  return nb;
+}
+
+/// The frame M = diag(sqrt(mu)) E^T of the Riemannian metric A (eigenpairs mu, E); nearly
+/// isotropic: the shape and orientation of M0 at A's size.
+Mat2 frame_of(const Sym& A, const Mat2& M0) {
+  Eigen::SelfAdjointEigenSolver<Sym> es(A);
+  const Eigen::Vector2d mu = es.eigenvalues();
+  if (mu[1] / mu[0] < 1.1 * 1.1) return M0 * (std::pow(mu[0] * mu[1], 0.25) / std::sqrt(std::abs(M0.determinant())));
+  return mu.array().sqrt().matrix().asDiagonal() * es.eigenvectors().transpose();
+}
+
+/// Metric intersection A ∩ B: with P^T A P = I, P^T B P = diag(l), A ∩ B = P^-T diag(max(1, l)) P^-1.
+Sym intersect(const Sym& A, const Sym& B) {
+  Eigen::GeneralizedSelfAdjointEigenSolver<Sym> es(B, A);  // B p = l A p, P^T A P = I
+  const Mat2 P = es.eigenvectors();
+  const Eigen::Vector2d l = es.eigenvalues().cwiseMax(1.0);
+  const Mat2 Pi = P.inverse();
+  Sym R = Pi.transpose() * l.asDiagonal() * Pi;
+  return 0.5 * (R + R.transpose());
+}
+
+/// Rescales all metrics so that the metric area is `area` again; fills the report.
+void restore_area(Background& bg, std::vector<Mat2>& M, double area, FilterReport& r) {
+  bg.set_mesh_cell_metrics(M);
+  r.rescale = bg.metric_area() > 0 ? std::sqrt(area / bg.metric_area()) : 1.0;
+  for (Mat2& m : M) m *= r.rescale;
+  bg.set_mesh_cell_metrics(M);
+}
+
+}  // namespace
+
+double max_neighbour_size_ratio(const Background& bg) {
+  const auto nb = neighbours(bg);
+  double worst = 1;
+  for (int c = 0; c < static_cast<int>(nb.size()); ++c) {
+    const double hc = mean_size(bg.mesh_cell_metric(c));
+    for (int n : nb[c]) worst = std::max(worst, mean_size(bg.mesh_cell_metric(n)) / hc);
+  }
+  return worst;
+}
+
+FilterReport smooth_metric(Background& bg, int passes) {
+  FilterReport r;
+  if (bg.is_analytic()) throw InputError("", "metric smoothing needs a frame (piecewise-constant metric)");
+  const int n = bg.mesh().num_cells();
+  const auto nb = neighbours(bg);
+  const double area = bg.metric_area();
+  r.max_ratio_before = max_neighbour_size_ratio(bg);
+  std::vector<Mat2> M0(n), M(n);
+  std::vector<Sym> L(n), L2(n);
+  for (int c = 0; c < n; ++c) {
+    M0[c] = bg.mesh_cell_metric(c);
+    L[c] = sym_log(M0[c].transpose() * M0[c]);
+  }
+  for (int k = 0; k < passes; ++k) {
+    for (int c = 0; c < n; ++c) {
+      Sym s = L[c];
+      for (int j : nb[c]) s += L[j];
+      L2[c] = s / (1.0 + nb[c].size());
+    }
+    L.swap(L2);
+  }
+  for (int c = 0; c < n; ++c) {
+    Eigen::SelfAdjointEigenSolver<Sym> es(L[c]);
+    const Sym A = es.eigenvectors() * es.eigenvalues().array().exp().matrix().asDiagonal() * es.eigenvectors().transpose();
+    M[c] = frame_of(A, M0[c]);
+    if ((M[c] - M0[c]).norm() > 1e-12 * M0[c].norm()) ++r.cells_changed;
+  }
+  restore_area(bg, M, area, r);
+  r.max_ratio_after = max_neighbour_size_ratio(bg);
+  return r;
+}
+
+FilterReport grade_metric(Background& bg, double beta) {
+  FilterReport r;
+  if (bg.is_analytic()) throw InputError("", "metric gradation needs a frame (piecewise-constant metric)");
+  if (!(beta > 1)) throw InputError("", "gradation growth must be > 1");
+  const int n = bg.mesh().num_cells();
+  const auto nb = neighbours(bg);
+  const double area = bg.metric_area();
+  const double lnb = std::log(beta);
+  r.max_ratio_before = max_neighbour_size_ratio(bg);
+  std::vector<Mat2> M0(n), M(n);
+  std::vector<Sym> A(n);
+  std::vector<Vec2> g(n);
+  for (int c = 0; c < n; ++c) {
+    M0[c] = bg.mesh_cell_metric(c);
+    A[c] = M0[c].transpose() * M0[c];
+    g[c] = cell_centroid(bg.mesh(), c);
+  }
+  // Worklist: a cell whose metric changed re-imposes its bound on its neighbours.
+  std::vector<char> changed(n, 0), queued(n, 1);
+  std::deque<int> work;
+  for (int c = 0; c < n; ++c) work.push_back(c);
+  long updates = 0;
+  const long max_updates = 200L * n + 1000;
+  while (!work.empty() && updates < max_updates) {
+    const int c = work.front();
+    work.pop_front();
+    queued[c] = 0;
+    for (int j : nb[c]) {
+      const Vec2 d = g[j] - g[c];
+      const double l = std::sqrt(d.dot(A[c] * d));
+      const double eta = 1.0 / ((1 + l * lnb) * (1 + l * lnb));
+      const Sym I = intersect(A[j], eta * A[c]);
+      if ((I - A[j]).norm() > 1e-9 * A[j].norm()) {
+        A[j] = I;
+        changed[j] = 1;
+        ++updates;
+        if (!queued[j]) {
+          queued[j] = 1;
+          work.push_back(j);
+        }
+      }
+    }
+  }
+  r.passes = static_cast<int>(updates);
+  for (int c = 0; c < n; ++c) {
+    M[c] = changed[c] ? frame_of(A[c], M0[c]) : M0[c];
+    r.cells_changed += changed[c];
+  }
+  restore_area(bg, M, area, r);
+  r.max_ratio_after = max_neighbour_size_ratio(bg);
+  return r;
+}
+
+}  // namespace quadapt::lpcvt

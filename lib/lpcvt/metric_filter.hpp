@@ -1,0 +1,49 @@
+#pragma once
+// Optional filters of the piecewise-constant frame before meshing (beyond the thesis, whose
+// generator used the raw per-cell frame and stalled at sharp size changes, §6.2-6.5, §7.1.1).
+// Both work on the effective metric M_eff per background cell and keep the point count: the
+// result is rescaled uniformly to the metric area it had before (lpcvt.hpp: one point per
+// unit metric area), so they redistribute points and never change the complexity.
+//
+// Smoothing (log-Euclidean). The Riemannian metric 𝓜 = M^T M of each cell is replaced,
+// `passes` times, by the mean of log 𝓜 over the cell and its face neighbours,
+//     log 𝓜_c <- (log 𝓜_c + sum_n log 𝓜_n) / (1 + #n),      𝓜 = exp(log 𝓜)
+// (Arsigny et al.'s log-Euclidean mean: symmetric positive definite by construction, no angle
+// wrap-around as when averaging theta, no swelling of the determinant as the arithmetic mean).
+// The frame is rebuilt as M = diag(sqrt(mu_1), sqrt(mu_2)) [e_1 e_2]^T from the eigenpairs of
+// 𝓜; where the smoothed metric is nearly isotropic (mu_max / mu_min < 1.1^2) the eigenvectors
+// mean nothing and the cell keeps its own frame's orientation and shape at the new size
+// (the L_p energy, unlike 𝓜, sees the frame's orientation even when h1 = h2).
+//
+// Gradation (Alauzet's anisotropic size gradation, "Size gradation control of anisotropic
+// meshes", 2010). Between face-neighbouring cells c, n with centroids g_c, g_n,
+//     𝓜_n <- 𝓜_n ∩ eta(l) 𝓜_c,   l = |M_c (g_n - g_c)| (metric length in c's metric),
+//     eta(l) = (1 + l ln beta)^-2,
+// i.e. along every direction the size at n may exceed the size at c by at most the factor
+// (1 + l ln beta): sizes grow by about beta per unit metric length (per element). ∩ is the
+// metric intersection (largest ellipse inside both, by simultaneous reduction). A worklist
+// re-imposes the bounds of every cell that changed on its neighbours until nothing changes by
+// more than 1e-9 (relative; at most 200 updates per cell). Intersection only
+// refines; the uniform rescale afterwards restores the point count. The frame is rebuilt from
+// 𝓜 as for the smoothing.
+#include "lpcvt/background.hpp"
+
+namespace quadapt::lpcvt {
+
+struct FilterReport {
+  int cells_changed = 0;      ///< cells whose metric moved by more than 1e-12 (relative)
+  int passes = 0;             ///< gradation: metric updates made
+  double rescale = 1;         ///< the uniform factor that restored the metric area
+  double max_ratio_before = 0, max_ratio_after = 0;  ///< largest neighbour size ratio
+};
+
+/// Log-Euclidean smoothing, `passes` Jacobi passes (above).
+FilterReport smooth_metric(Background& bg, int passes);
+
+/// Anisotropic gradation (above); growth beta > 1 per unit metric length.
+FilterReport grade_metric(Background& bg, double beta);
+
+/// Largest mean-size ratio between face-neighbouring background cells.
+double max_neighbour_size_ratio(const Background& bg);
+
+}  // namespace quadapt::lpcvt
