@@ -35,7 +35,15 @@ Mat2 frame_of(const Sym& A, const Mat2& M0) {
   Eigen::SelfAdjointEigenSolver<Sym> es(A);
   const Eigen::Vector2d mu = es.eigenvalues();
   if (mu[1] / mu[0] < 1.1 * 1.1) return M0 * (std::pow(mu[0] * mu[1], 0.25) / std::sqrt(std::abs(M0.determinant())));
-  return mu.array().sqrt().matrix().asDiagonal() * es.eigenvectors().transpose();
+  Mat2 M = mu.array().sqrt().matrix().asDiagonal() * es.eigenvectors().transpose();
+  // rows in the order and with the signs of M0's (the same |M u|_p either way; an unchanged
+  // frame stays identical)
+  if (std::abs(M.row(0).dot(M0.row(0))) + std::abs(M.row(1).dot(M0.row(1))) <
+      std::abs(M.row(1).dot(M0.row(0))) + std::abs(M.row(0).dot(M0.row(1))))
+    M.row(0).swap(M.row(1));
+  for (int r = 0; r < 2; ++r)
+    if (M.row(r).dot(M0.row(r)) < 0) M.row(r) *= -1;
+  return M;
 }
 
 /// Metric intersection A ∩ B: with P^T A P = I, P^T B P = diag(l), A ∩ B = P^-T diag(max(1, l)) P^-1.

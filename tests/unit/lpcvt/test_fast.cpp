@@ -1,0 +1,253 @@
+// The speed, count and anisotropy features of issue #10: Delaunay updates by flips, the lattice
+// start, exact point counts, the weighted energy, metric smoothing and gradation, multilevel.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "helpers.hpp"
+#include "lpcvt/boundary.hpp"
+#include "lpcvt/delaunay.hpp"
+#include "lpcvt/energy.hpp"
+#include "lpcvt/lattice.hpp"
+#include "lpcvt/lpcvt.hpp"
+#include "lpcvt/metric_filter.hpp"
+#include "lpcvt/multilevel.hpp"
+#include "lpcvt/quality.hpp"
+#include "lpcvt/split_merge.hpp"
+#include "lpcvt/triangulate.hpp"
+#include "mesh/topology.hpp"
+
+using namespace lpcvt_test;
+
+namespace {
+
+/// Same neighbour lists (CCW from the smallest neighbour) and hull flags.
+void check_same_graph(const DelaunayGraph& a, const DelaunayGraph& b) {
+  REQUIRE(a.num_sites() == b.num_sites());
+  int differ = 0;
+  for (int i = 0; i < a.num_sites(); ++i) {
+    if (a.on_hull(i) != b.on_hull(i) || a.degree(i) != b.degree(i)) {
+      ++differ;
+      continue;
+    }
+    for (int k = 0; k < a.degree(i); ++k)
+      if (a.nbr_begin(i)[k] != b.nbr_begin(i)[k]) {
+        ++differ;
+        break;
+      }
+    if (!a.on_hull(i) && a.has_voronoi() && b.has_voronoi())
+      for (int k = 0; k < a.degree(i); ++k)
+        if ((a.vor_begin(i)[k] - b.vor_begin(i)[k]).norm() > 1e-12) {
+          ++differ;
+          break;
+        }
+  }
+  CHECK(differ == 0);
+}
+
+}  // namespace
+
+TEST_CASE("Delaunay update by flips and deferred moves equals a rebuild") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec2> x;
+  for (int i = 0; i < 10; ++i)  // a fixed square boundary (the hull), corners once
+    for (const Vec2& p : {Vec2(i / 10.0, 0), Vec2(1, i / 10.0), Vec2(1 - i / 10.0, 1), Vec2(0, 1 - i / 10.0)}) x.push_back(p);
+  const int nfixed = static_cast<int>(x.size());
+  for (int i = 0; i < 400; ++i) x.push_back(Vec2(0.02 + 0.96 * u(rng), 0.02 + 0.96 * u(rng)));
+  DelaunayGraph dt(x, false, true);
+  int flipped = 0;
+  for (double amp : {1e-4, 3e-3, 2e-2}) {  // from no inversions to many
+    for (int i = nfixed; i < static_cast<int>(x.size()); ++i)
+      x[i] = (x[i] + Vec2(amp * (u(rng) - 0.5), amp * (u(rng) - 0.5))).cwiseMax(Vec2(0.001, 0.001)).cwiseMin(Vec2(0.999, 0.999));
+    int flips = 0;
+    const bool updated = dt.update(x, &flips);
+    flipped += flips;
+    MESSAGE("move " << amp << ": " << (updated ? "updated" : "rebuilt") << ", " << flips << " flips");
+    DelaunayGraph fresh(x, false, true);
+    check_same_graph(dt, fresh);
+  }
+  CHECK(flipped > 0);
+}
+
+TEST_CASE("the lattice start is the frame's lattice where the frame is constant") {
+  Mesh m = quadapt::make_structured_quads(4, 4);
+  const double h1 = 0.02, h2 = 0.006, th = 0.5;  // M_eff spacing 4h: 0.08 x 0.024
+  set_frame(m, h1, h2, th);
+  Background bg = Background::from_frame(m, 0.25, "mem");
+  auto b = mesh_boundary(bg, boundary_curves(bg));
+  auto pts = lattice_points(bg, b.points);
+  REQUIRE(pts.size() > 200);
+  // every Delaunay edge between lattice points is an integer combination of the frame's axes:
+  // the metric image M_eff (p - q) has integer components
+  std::vector<Vec2> all = pts;
+  DelaunayGraph dt(all);
+  const Mat2 M = bg.cell(0).M;
+  double worst = 0;
+  int unit = 0;
+  for (auto e : dt.edges()) {
+    const Vec2 f = M * (all[e[1]] - all[e[0]]);
+    worst = std::max({worst, std::abs(f.x() - std::round(f.x())), std::abs(f.y() - std::round(f.y()))});
+    if (std::abs(f.norm() - 1) < 1e-9) ++unit;
+  }
+  MESSAGE(pts.size() << " lattice points, largest deviation from the lattice " << worst << ", " << unit << " unit edges");
+  CHECK(worst < 1e-9);
+  CHECK(unit > static_cast<int>(pts.size()));  // about two unit edges per point
+}
+
+TEST_CASE("adjust_count reaches the requested count exactly, both ways") {
+  Mesh m = quadapt::make_structured_quads(3, 3);
+  set_frame(m, 0.03, 0.03, 0.2);
+  Background bg = Background::from_frame(m, 0.25, "mem");
+  auto b = mesh_boundary(bg, boundary_curves(bg));
+  const int nfixed = static_cast<int>(b.points.size());
+  for (int target : {nfixed + 40, nfixed + 150}) {
+    std::vector<Vec2> s = b.points;
+    auto r = random_inside(bg, 90, 3);
+    s.insert(s.end(), r.begin(), r.end());
+    SplitMergeOptions o;
+    const int change = adjust_count(bg, s, nfixed, b.segments, target, o);
+    CHECK(static_cast<int>(s.size()) == target);
+    CHECK(change == target - nfixed - 90);
+    for (int i = 0; i < nfixed; ++i) CHECK(s[i] == b.points[i]);  // fixed sites untouched
+  }
+}
+
+TEST_CASE("weighted energy (omega = |det M|^gamma): gradient matches finite differences") {
+  for (int kind = 0; kind < 2; ++kind) {
+    Mesh m = saddle_square(kind == 0 ? 4 : 8);
+    auto f = std::make_shared<SaddleMetric>();
+    Background bg = kind == 0 ? Background::analytic(m, f, 1.0) : Background::sampled(m, *f, 1.0);
+    auto b = mesh_boundary(bg, boundary_curves(bg));
+    std::vector<Vec2> x = b.points;
+    const int nfixed = static_cast<int>(x.size());
+    auto r = random_inside(bg, 25, 9);
+    x.insert(x.end(), r.begin(), r.end());
+    const double gamma = 1, h = 1e-4;
+    EnergyResult e = lp_energy(bg, x, 6, true, nullptr, gamma);
+    double worst = 0;
+    for (int i = nfixed; i < static_cast<int>(x.size()); ++i) {
+      Vec2 fd;
+      for (int d = 0; d < 2; ++d) {
+        auto at = [&](double off) {
+          std::vector<Vec2> y = x;
+          y[i][d] += off;
+          return lp_energy(bg, y, 6, false, nullptr, gamma).energy;
+        };
+        fd[d] = (-at(2 * h) + 8 * at(h) - 8 * at(-h) + at(-2 * h)) / (12 * h);
+      }
+      worst = std::max(worst, (fd - e.grad[i]).norm() / e.grad[i].norm());
+    }
+    MESSAGE(std::string(kind == 0 ? "continuous" : "sampled") << " saddle, gamma = 1: max relative FD error " << worst);
+    CHECK(worst < 1e-6);
+  }
+}
+
+TEST_CASE("weighted energy puts one point per unit metric area across a 16x density jump") {
+  // left half h = 0.1, right half h = 0.025 (det M 16x larger): the metric asks for 1/17 of
+  // the interior points on the left; gamma = 0 (thesis) gives the left more than that
+  Mesh m = quadapt::make_structured_quads(2, 1);
+  quadapt::CellField fld;
+  fld.name = "Vinv";
+  fld.ncomp = 9;
+  fld.values.assign(18, 0.0);
+  const double hs[2] = {0.1, 0.025};
+  for (int c = 0; c < 2; ++c) {
+    const Vec2 g = quadapt::cell_centroid(m, c);
+    const double hh = g.x() < 0.5 ? hs[0] : hs[1];
+    fld(c, 0) = fld(c, 4) = 1 / hh;
+    fld(c, 8) = 1;
+  }
+  m.set_field(fld);
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  double share[2];
+  for (int gi = 0; gi < 2; ++gi) {
+    LpcvtOptions o;
+    o.lbfgs.gamma = gi;
+    o.max_cycles = 3;
+    LpcvtResult r = run_lpcvt(bg, o);
+    int left = 0, free = 0;
+    for (size_t i = r.nfixed; i < r.sites.size(); ++i, ++free)
+      if (r.sites[i].x() < 0.5) ++left;
+    share[gi] = double(left) / free;
+  }
+  // metric areas: left 0.5 / 0.01 = 50, right 0.5 / 0.000625 = 800
+  MESSAGE("share of free points on the coarse side: gamma 0 " << share[0] << ", gamma 1 " << share[1]
+                                                            << " (metric: " << 50.0 / 850 << ")");
+  CHECK(share[1] < share[0]);
+  CHECK(std::abs(share[1] - 50.0 / 850) < 0.5 * std::abs(share[0] - 50.0 / 850));
+}
+
+TEST_CASE("metric filters keep the point count; smoothing keeps a constant frame, gradation bounds growth") {
+  Mesh m = quadapt::make_structured_quads(8, 8);
+  set_frame(m, 0.03, 0.01, 0.4);
+  Background bg = Background::from_frame(m, 0.25, "mem");
+  const double area = bg.metric_area();
+  Background s = bg;
+  FilterReport fs = smooth_metric(s, 3);
+  CHECK(s.metric_area() == doctest::Approx(area).epsilon(1e-12));
+  for (int c = 0; c < m.num_cells(); ++c) CHECK((s.mesh_cell_metric(c) - bg.mesh_cell_metric(c)).norm() < 1e-9 * bg.mesh_cell_metric(c).norm());
+  CHECK(fs.cells_changed == 0);
+  // a 16x size jump between the left column and the rest
+  Background j = bg;
+  std::vector<Mat2> M(m.num_cells());
+  for (int c = 0; c < m.num_cells(); ++c)
+    M[c] = bg.mesh_cell_metric(c) * (quadapt::cell_centroid(m, c).x() < 0.125 ? 16.0 : 1.0);
+  j.set_mesh_cell_metrics(M);
+  const double area_j = j.metric_area();
+  Background g = j;
+  const double beta = 1.5;
+  FilterReport fg = grade_metric(g, beta);
+  CHECK(g.metric_area() == doctest::Approx(area_j).epsilon(1e-10));
+  CHECK(fg.cells_changed > 0);
+  CHECK(fg.max_ratio_after < fg.max_ratio_before);
+  // the bound: along every direction, sizes at n exceed those at c by at most (1 + l ln beta),
+  // l measured before the uniform rescale (which only changes the units)
+  double worst = 0;
+  quadapt::Topology t = quadapt::build_topology(m);
+  for (int c = 0; c < m.num_cells(); ++c)
+    for (int n : t.neighbours(c)) {
+      const Mat2 Mc = g.mesh_cell_metric(c), Mn = g.mesh_cell_metric(n);
+      const Vec2 d = quadapt::cell_centroid(m, n) - quadapt::cell_centroid(m, c);
+      const double l = (Mc * d).norm() / fg.rescale, eta = 1 / std::pow(1 + l * std::log(beta), 2);
+      // Mn^T Mn - eta Mc^T Mc must be positive semi-definite
+      const Mat2 D = Mn.transpose() * Mn - eta * Mc.transpose() * Mc;
+      Eigen::SelfAdjointEigenSolver<Mat2> es(0.5 * (D + D.transpose()));
+      worst = std::min(worst, es.eigenvalues()[0] / (Mn.transpose() * Mn).norm());
+    }
+  MESSAGE("gradation: " << fg.cells_changed << " cells refined, neighbour size ratio " << fg.max_ratio_before << " -> "
+                        << fg.max_ratio_after << ", worst bound violation " << worst);
+  CHECK(worst > -1e-6);
+}
+
+TEST_CASE("multilevel and lattice starts: exact count, valid mesh, aligned cells on a 5:1 frame") {
+  Mesh m = quadapt::make_structured_quads(4, 4);
+  set_frame(m, 0.02, 0.004, 0.5);
+  Background bg = Background::from_frame(m, 0.25, "mem");
+  for (int mode = 0; mode < 2; ++mode) {
+    LpcvtOptions o;
+    o.lbfgs.max_iterations = 60;
+    o.lbfgs.delta = 1e-3;
+    o.lbfgs.past = 10;
+    o.lbfgs.gamma = 1;
+    if (mode == 0) {
+      o.seed_mode = SeedMode::Lattice;
+    } else {
+      o.multilevel = true;
+      o.coarse_points = 100;
+    }
+    LpcvtResult r = run_lpcvt(bg, o);
+    TriangulationCheck c = check_triangulation(r.mesh);
+    CHECK(c.ok());
+    CHECK(static_cast<int>(r.sites.size()) == static_cast<int>(std::lround(r.requested_points)));
+    CHECK(r.mesh.num_cells() == doctest::Approx(2 * r.metric_area).epsilon(0.01));
+    AlignmentStats al = voronoi_alignment(bg, r.sites, r.nfixed);
+    MESSAGE(std::string(mode == 0 ? "lattice" : "multilevel") << ": " << r.sites.size() << " points, " << r.levels.size()
+                                                   << " levels, " << r.iterations << " iterations, Voronoi edges off the axes by "
+                                                   << al.mean_deviation << " deg");
+    if (mode == 1) CHECK(r.levels.size() >= 2);
+    CHECK(al.mean_deviation < 10);  // random orientations: 22.5
+  }
+}
