@@ -251,3 +251,27 @@ TEST_CASE("multilevel and lattice starts: exact count, valid mesh, aligned cells
     CHECK(al.mean_deviation < 10);  // random orientations: 22.5
   }
 }
+
+TEST_CASE("non-convex domains with the frame defaults (lattice start, weighted energy): valid, exact count") {
+  for (int kind = 0; kind < 2; ++kind) {
+    Mesh m = kind == 0 ? l_shape() : square_with_hole();
+    set_frame(m, 0.15, 0.05, 0.3);
+    Background bg = Background::from_frame(m, 1.0, "mem");
+    LpcvtOptions o;
+    o.seed_mode = SeedMode::Lattice;
+    o.lbfgs.gamma = 1;
+    o.lbfgs.max_iterations = 100;
+    o.lbfgs.delta = 1e-3;
+    o.lbfgs.past = 10;
+    LpcvtResult r = run_lpcvt(bg, o);
+    TriangulationCheck c = check_triangulation(r.mesh);
+    INFO(c.summary());
+    CHECK(c.ok());
+    CHECK(c.area == doctest::Approx(bg.area()).epsilon(1e-9));
+    for (const Vec2& p : r.sites) CHECK(bg.inside(p));
+    CHECK(static_cast<int>(r.sites.size()) == static_cast<int>(std::lround(r.requested_points)));
+    MESSAGE(std::string(kind == 0 ? "L-shape" : "hole") << ": " << r.sites.size() << " points, "
+                                                        << r.mesh.num_cells() << " triangles, " << r.cycles.size()
+                                                        << " cycles");
+  }
+}
