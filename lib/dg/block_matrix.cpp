@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/error.hpp"
+#include "dg/block_dispatch.hpp"
 
 namespace quadapt {
 
@@ -13,20 +14,6 @@ namespace {
 using MapM = Eigen::Map<Eigen::MatrixXd>;
 using CMapM = Eigen::Map<const Eigen::MatrixXd>;
 
-/// Calls f(std::integral_constant<int, NB>) for the DG block sizes (p+1)^2, p = 1..6, so that the
-/// hot block kernels use fixed-size Eigen types; other sizes get Eigen::Dynamic.
-template <class F>
-void dispatch_block_size(int nb, F&& f) {
-  switch (nb) {
-    case 4: f(std::integral_constant<int, 4>()); break;
-    case 9: f(std::integral_constant<int, 9>()); break;
-    case 16: f(std::integral_constant<int, 16>()); break;
-    case 25: f(std::integral_constant<int, 25>()); break;
-    case 36: f(std::integral_constant<int, 36>()); break;
-    case 49: f(std::integral_constant<int, 49>()); break;
-    default: f(std::integral_constant<int, Eigen::Dynamic>()); break;
-  }
-}
 }  // namespace
 
 BlockSparseMatrix::BlockSparseMatrix(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& A, int nb) {
@@ -202,50 +189,96 @@ void BlockSparseMatrix::multiply_abs(const Eigen::VectorXd& x, Eigen::VectorXd& 
 // ---------------------------------------------------------------------------- block ILU(0)
 
 void BlockILU0::compute(const BlockSparseMatrix& A, const std::vector<int>& order, bool single_precision) {
+  n_ = A.block_rows();
+  nb_ = A.block_size();
   order_ = order;
-  single_.clear();
-  LU_ = order.empty() ? A : A.permuted(order);
-  const int n = A.block_rows(), nb = A.block_size();
-  const auto& rs = LU_.row_start();
-  const auto& cols = LU_.cols();
-  diag_.assign(n, -1);
-  for (int I = 0; I < n; ++I) {
-    diag_[I] = LU_.find(I, I);
-    if (diag_[I] < 0) throw NumericalError("block ILU: block row " + std::to_string(I) + " has no diagonal block");
+  if (!order.empty() && static_cast<int>(order.size()) != n_)
+    throw NumericalError("block ILU: permutation of the wrong size");
+  // Pattern in elimination order; src[e] = A's block behind factor block e.
+  std::vector<int> inv(n_, -1);
+  for (int i = 0; i < n_; ++i) {
+    const int I = order.empty() ? i : order[i];
+    if (I < 0 || I >= n_ || inv[I] >= 0) throw NumericalError("block ILU: not a permutation");
+    inv[I] = i;
   }
+  const auto& ars = A.row_start();
+  const auto& acols = A.cols();
+  rs_.assign(n_ + 1, 0);
+  for (int i = 0; i < n_; ++i) {
+    const int I = order.empty() ? i : order[i];
+    rs_[i + 1] = rs_[i] + (ars[I + 1] - ars[I]);
+  }
+  cols_.resize(acols.size());
+  std::vector<long long> src(acols.size());
+  std::vector<std::pair<int, long long>> row;
+  for (int i = 0; i < n_; ++i) {
+    const int I = order.empty() ? i : order[i];
+    row.clear();
+    for (long long k = ars[I]; k < ars[I + 1]; ++k) row.emplace_back(inv[acols[k]], k);
+    std::sort(row.begin(), row.end());
+    long long e = rs_[i];
+    for (const auto& [j, k] : row) {
+      cols_[e] = j;
+      src[e++] = k;
+    }
+  }
+  diag_.assign(n_, -1);
+  for (int i = 0; i < n_; ++i) {
+    auto b = cols_.begin() + rs_[i], e = cols_.begin() + rs_[i + 1];
+    auto it = std::lower_bound(b, e, i);
+    if (it == e || *it != i) throw NumericalError("block ILU: block row " + std::to_string(i) + " has no diagonal block");
+    diag_[i] = it - cols_.begin();
+  }
+  HugeVector<float>().swap(single_);
+  HugeVector<double>().swap(double_);
+  if (single_precision)
+    factor(A, src, single_);
+  else
+    factor(A, src, double_);
+}
+
+template <class T>
+void BlockILU0::factor(const BlockSparseMatrix& A, const std::vector<long long>& src, HugeVector<T>& vals) {
+  const int nb = nb_;
+  const size_t bs = static_cast<size_t>(nb) * nb;
+  vals.resize(cols_.size() * bs);  // written once, row by row below
   dispatch_block_size(nb, [&](auto NBc) {
     constexpr int NB = decltype(NBc)::value;
     using Mat = Eigen::Matrix<double, NB, NB>;
-    Mat tmp(nb, nb);
-    for (int I = 0; I < n; ++I) {
-      for (long long k = rs[I]; k < diag_[I]; ++k) {
-        const int K = cols[k];
-        Eigen::Map<Mat> LIK(LU_.block(k), nb, nb);
-        tmp.noalias() = LIK.lazyProduct(Eigen::Map<const Mat>(LU_.block(diag_[K]), nb, nb));  // diag = inv(U_KK)
+    using MatT = Eigen::Matrix<T, NB, NB>;
+    auto stored = [&](long long k) { return Eigen::Map<const MatT>(vals.data() + k * bs, nb, nb).template cast<double>(); };
+    std::vector<double> work;  // block row i in double precision
+    Mat tmp(nb, nb), U(nb, nb);
+    for (int i = 0; i < n_; ++i) {
+      const long long r0 = rs_[i], r1 = rs_[i + 1];
+      work.resize(static_cast<size_t>(r1 - r0) * bs);
+      auto wblk = [&](long long k) { return Eigen::Map<Mat>(work.data() + (k - r0) * bs, nb, nb); };
+      for (long long k = r0; k < r1; ++k) std::copy_n(A.block(src[k]), bs, work.data() + (k - r0) * bs);
+      for (long long k = r0; k < diag_[i]; ++k) {
+        const int K = cols_[k];
+        auto LIK = wblk(k);
+        U = stored(diag_[K]);  // inv(U_KK)
+        tmp.noalias() = LIK.lazyProduct(U);
         LIK = tmp;
-        // Row I -= L_IK * (row K beyond its diagonal), restricted to row I's pattern.
-        long long a = k + 1, aend = rs[I + 1];
-        for (long long b = diag_[K] + 1; b < rs[K + 1]; ++b) {
-          const int J = cols[b];
-          while (a < aend && cols[a] < J) ++a;
-          if (a == aend) break;
-          if (cols[a] == J)
-            Eigen::Map<Mat>(LU_.block(a), nb, nb).noalias() -= LIK.lazyProduct(Eigen::Map<const Mat>(LU_.block(b), nb, nb));
+        // Row i -= L_iK * (row K beyond its diagonal), restricted to row i's pattern.
+        long long a = k + 1;
+        for (long long b = diag_[K] + 1; b < rs_[K + 1]; ++b) {
+          const int J = cols_[b];
+          while (a < r1 && cols_[a] < J) ++a;
+          if (a == r1) break;
+          if (cols_[a] == J) {
+            U = stored(b);
+            wblk(a).noalias() -= LIK.lazyProduct(U);
+          }
         }
       }
-      Eigen::Map<Mat> DI(LU_.block(diag_[I]), nb, nb);
+      auto DI = wblk(diag_[i]);
       tmp = Eigen::PartialPivLU<Mat>(DI).inverse();
-      if (!tmp.allFinite()) throw NumericalError("block ILU: singular pivot block in row " + std::to_string(I));
+      if (!tmp.allFinite()) throw NumericalError("block ILU: singular pivot block in row " + std::to_string(i));
       DI = tmp;
+      for (size_t t = 0; t < work.size(); ++t) vals[static_cast<size_t>(r0) * bs + t] = static_cast<T>(work[t]);
     }
   });
-  if (single_precision) {
-    const HugeVector<double>& v = LU_.values();
-    single_.resize(v.size());
-#pragma omp parallel for schedule(static)
-    for (long long i = 0; i < static_cast<long long>(v.size()); ++i) single_[i] = static_cast<float>(v[i]);
-    LU_.release_values();
-  }
 }
 
 namespace {
@@ -277,7 +310,7 @@ void ilu_solve(int n, int nb, const std::vector<long long>& rs, const std::vecto
 }  // namespace
 
 void BlockILU0::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
-  const int n = LU_.block_rows(), nb = LU_.block_size();
+  const int n = n_, nb = nb_;
   const Eigen::Index N = r.size();
   // Gather in elimination order.
   auto src = [&](int i) { return order_.empty() ? i : order_[i]; };
@@ -286,7 +319,7 @@ void BlockILU0::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
     Eigen::VectorXf y(N);
     for (int i = 0; i < n; ++i)
       y.segment(static_cast<Eigen::Index>(i) * nb, nb) = r.segment(static_cast<Eigen::Index>(src(i)) * nb, nb).cast<float>();
-    ilu_solve<float>(n, nb, LU_.row_start(), LU_.cols(), diag_, single_.data(), y.data());
+    ilu_solve<float>(n, nb, rs_, cols_, diag_, single_.data(), y.data());
     for (int i = 0; i < n; ++i)
       z.segment(static_cast<Eigen::Index>(src(i)) * nb, nb) = y.segment(static_cast<Eigen::Index>(i) * nb, nb).cast<double>();
     return;
@@ -294,7 +327,7 @@ void BlockILU0::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
   Eigen::VectorXd y(N);
   for (int i = 0; i < n; ++i)
     y.segment(static_cast<Eigen::Index>(i) * nb, nb) = r.segment(static_cast<Eigen::Index>(src(i)) * nb, nb);
-  ilu_solve<double>(n, nb, LU_.row_start(), LU_.cols(), diag_, LU_.values().data(), y.data());
+  ilu_solve<double>(n, nb, rs_, cols_, diag_, double_.data(), y.data());
   for (int i = 0; i < n; ++i)
     z.segment(static_cast<Eigen::Index>(src(i)) * nb, nb) = y.segment(static_cast<Eigen::Index>(i) * nb, nb);
 }

@@ -59,10 +59,13 @@ class BlockSparseMatrix {
 /// Block incomplete LU with zero fill (ILU(0) on the block pattern, dense blocks) in the
 /// matrix's block order: A ~ L U, L unit block-lower, U block-upper. apply() solves L U z = r.
 /// The factorisation is sequential; its quality depends on the cell order (a downwind or
-/// row-by-row order is best for advection). The factors are computed in double precision and,
-/// by default, stored and applied in single precision: the triangular solves are memory bound,
-/// and a preconditioner needs no more accuracy (use it with flexible GMRES or BiCGSTAB, which
-/// tolerate an inexact preconditioner).
+/// row-by-row order is best for advection). By default the factors are stored and applied in
+/// single precision: the triangular solves are memory bound, and a preconditioner needs no more
+/// accuracy (use it with flexible GMRES or BiCGSTAB, which tolerate an inexact preconditioner).
+/// Each block row is eliminated in double precision in a small scratch buffer and written once
+/// to the factor storage, so the set-up touches only the factor's memory (half of A's in single
+/// precision) — no full-size double copy of A, whose first-touch page faults dominated the
+/// set-up on our VMs (docs/adjoint.md).
 class BlockILU0 {
  public:
   BlockILU0() = default;
@@ -72,9 +75,15 @@ class BlockILU0 {
   void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
 
  private:
-  BlockSparseMatrix LU_;                ///< L below, U above the diagonal; diagonal = inv(U_II)
-  HugeVector<float> single_;            ///< LU_'s values in single precision (then LU_ has none)
+  template <class T>
+  void factor(const BlockSparseMatrix& A, const std::vector<long long>& src, HugeVector<T>& vals);
+
+  int n_ = 0, nb_ = 0;
+  std::vector<long long> rs_;           ///< factor's block pattern in elimination order (CSR)
+  std::vector<int> cols_;
   std::vector<long long> diag_;         ///< index of the diagonal block per row
+  HugeVector<float> single_;            ///< L below, U above the diagonal; diagonal = inv(U_II)
+  HugeVector<double> double_;           ///< the same in double precision (single_precision = false)
   std::vector<int> order_;              ///< elimination order (empty = natural)
 };
 

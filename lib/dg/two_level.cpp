@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "dg/basis.hpp"
+#include "dg/block_dispatch.hpp"
 
 namespace quadapt {
 
@@ -58,11 +59,17 @@ void TwoLevelPreconditioner::compute(const BlockSparseMatrix& A, const VertexCoa
   const auto& rs = A.row_start();
   const auto& cols = A.cols();
   std::vector<Eigen::Matrix4d> local(static_cast<size_t>(A.num_blocks()));
-  const Eigen::MatrixXd& S = coarse.shape;
+  dispatch_block_size(nb, [&](auto NBc) {
+    constexpr int NB = decltype(NBc)::value;
+    using Shape = Eigen::Matrix<double, NB, 4>;
+    const Shape S = coarse.shape;
 #pragma omp parallel for schedule(static)
-  for (int r = 0; r < n; ++r)
-    for (long long k = rs[r]; k < rs[r + 1]; ++k)
-      local[k] = S.transpose() * Eigen::Map<const Eigen::MatrixXd>(A.block(k), nb, nb) * S;
+    for (int r = 0; r < n; ++r)
+      for (long long k = rs[r]; k < rs[r + 1]; ++k) {
+        const Shape AS = Eigen::Map<const Eigen::Matrix<double, NB, NB>>(A.block(k), nb, nb).lazyProduct(S);
+        local[k].noalias() = S.transpose().lazyProduct(AS);
+      }
+  });
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(local.size() * 16);
   for (int r = 0; r < n; ++r)
@@ -83,23 +90,29 @@ void TwoLevelPreconditioner::compute(const BlockSparseMatrix& A, const VertexCoa
 void TwoLevelPreconditioner::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
   const Impl& I = *impl_;
   const int n = I.A->block_rows(), nb = I.A->block_size();
-  const Eigen::MatrixXd& S = I.coarse.shape;
   I.ilu.apply(r, z);
   Eigen::VectorXd t;
   I.A->multiply(z, t);
   Eigen::VectorXd rr = r - t;
   Eigen::VectorXd rc = Eigen::VectorXd::Zero(I.coarse.num_coarse);
-  for (int c = 0; c < n; ++c) {
-    Eigen::Vector4d v = S.transpose() * rr.segment(static_cast<Eigen::Index>(c) * nb, nb);
-    for (int k = 0; k < 4; ++k) rc[I.coarse.vert[c][k]] += v[k];
-  }
-  Eigen::VectorXd xc = I.lu.solve(rc);
+  Eigen::VectorXd xc;
+  dispatch_block_size(nb, [&](auto NBc) {
+    constexpr int NB = decltype(NBc)::value;
+    using Shape = Eigen::Matrix<double, NB, 4>;
+    using Vec = Eigen::Matrix<double, NB, 1>;
+    const Shape S = I.coarse.shape;
+    for (int c = 0; c < n; ++c) {  // r_c = P^T rr (sequential: vertices are shared)
+      const Eigen::Vector4d v = S.transpose() * Eigen::Map<const Vec>(rr.data() + static_cast<Eigen::Index>(c) * nb, nb);
+      for (int k = 0; k < 4; ++k) rc[I.coarse.vert[c][k]] += v[k];
+    }
+    xc = I.lu.solve(rc);
 #pragma omp parallel for schedule(static)
-  for (int c = 0; c < n; ++c) {
-    Eigen::Vector4d v;
-    for (int k = 0; k < 4; ++k) v[k] = xc[I.coarse.vert[c][k]];
-    z.segment(static_cast<Eigen::Index>(c) * nb, nb).noalias() += S * v;
-  }
+    for (int c = 0; c < n; ++c) {  // z += P x_c
+      Eigen::Vector4d v;
+      for (int k = 0; k < 4; ++k) v[k] = xc[I.coarse.vert[c][k]];
+      Eigen::Map<Vec>(z.data() + static_cast<Eigen::Index>(c) * nb, nb).noalias() += S * v;
+    }
+  });
   if (!I.post) return;
   I.A->multiply(z, t);
   rr = r - t;
