@@ -105,6 +105,11 @@ if [ "$PICTURES" = yes ] && ! command -v meshplot >/dev/null 2>&1; then
 fi
 [ "$CHECK_ONLY" = 1 ] && { echo "loop: inputs OK (tools: ${tools[*]})"; exit 0; }
 
+# OpenMP threads that wait sleep instead of spinning (docs/bench-dgsolve.md: with libgomp's
+# default the idle thread spins through the sequential ILU sweeps; 2.36 s instead of 1.28 s for
+# a p = 3 solve on a shared machine). An OMP_WAIT_POLICY set by the caller wins.
+export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
+
 # Under `make -jN` without OMP_NUM_THREADS, share the cores: nproc / N threads per tool (>= 1).
 if [ -z "${OMP_NUM_THREADS:-}" ] && [[ " ${MAKEFLAGS:-} " =~ \ -j([0-9]*) ]]; then
   jobs="${BASH_REMATCH[1]:-0}"
