@@ -1,6 +1,8 @@
 // quadsmooth: angle-based smoothing (Zhou & Shimada, thesis §4.6 ref. [135]) of a quad mesh,
 // never lowering the minimum angle, never inverting a cell. See docs/quadsmooth.md.
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/tool.hpp"
 #include "io/msh.hpp"
@@ -8,6 +10,8 @@
 #include "quad/quality.hpp"
 #include "quad/report.hpp"
 #include "quad/smooth.hpp"
+#include "quality/locate.hpp"
+#include "quality/mesh_quality.hpp"
 
 int main(int argc, char** argv) {
   using namespace quadapt;
@@ -20,8 +24,11 @@ int main(int argc, char** argv) {
             "inverts. Boundary and hanging nodes stay fixed. Gauss-Seidel sweeps in node order "
             "(deterministic). Input: a conforming quad (or mixed) mesh without inverted cells; "
             "output: the same connectivity and boundary groups, new interior node positions, "
-            "no fields. Report: sweeps, moves accepted/reduced/rejected, quality before/after.");
-  std::string in, out;
+            "no fields. With --frame FRAME.msh (cell field Vinv, M = V^-1) the angles are measured "
+            "in the frame's metric space (each node's star mapped by M at the node), which keeps "
+            "the sizes of a mesh made for that frame (boundary layers). "
+            "Report: sweeps, moves accepted/reduced/rejected, quality before/after.");
+  std::string in, out, frame_path;
   SmoothOptions opt;
   auto& app = tool.app();
   app.add_option("QUAD", in, "Input quad mesh (.msh)")->required()->check(CLI::ExistingFile);
@@ -36,6 +43,9 @@ int main(int argc, char** argv) {
                  "Stop when no node moves more than this fraction of its mean edge length")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--frame", frame_path,
+                 "Frame file (background mesh with the cell field Vinv): smooth in its metric space")
+      ->check(CLI::ExistingFile);
 
   return tool.run(argc, argv, [&] {
     tool.input(in);
@@ -43,11 +53,19 @@ int main(int argc, char** argv) {
     tool.option("sweeps", opt.sweeps);
     tool.option("halvings", opt.max_halvings);
     tool.option("tolerance", opt.tolerance);
-    Mesh m;
+    if (!frame_path.empty()) tool.input(frame_path);
+    tool.option("space", frame_path.empty() ? "physical" : "metric");
+    Mesh m, frame;
     {
       auto ph = tool.phase("read");
       m = read_msh(in);
       validate_mesh(m, in, {});
+      if (!frame_path.empty()) {
+        frame = read_msh(frame_path);
+        ValidateOptions fopt;
+        fopt.required_fields = {"Vinv"};
+        validate_mesh(frame, frame_path, fopt);
+      }
     }
     const QualitySummary before = quality_summary(m);
     if (before.inverted > 0)
@@ -56,7 +74,15 @@ int main(int argc, char** argv) {
     {
       auto ph = tool.phase("smooth");
       m.clear_fields();
-      st = angle_smooth(m, opt);
+      NodeMetric metric;
+      std::vector<Mat2> Mf;
+      std::unique_ptr<CellLocator> locator;
+      if (!frame_path.empty()) {
+        Mf = frame_matrices(frame, frame_path);  // reflections removed: det M > 0
+        locator = std::make_unique<CellLocator>(frame);
+        metric = [&](const Vec2& x) { return Mf[locator->locate_or_nearest(x)]; };
+      }
+      st = angle_smooth(m, opt, metric);
     }
     const QualitySummary after = quality_summary(m);
     auto& rep = tool.report();

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include <Eigen/LU>
+
 #include "core/error.hpp"
 #include "quad/mesh_utils.hpp"
 #include "quad/quality.hpp"
@@ -26,10 +28,11 @@ int local_index(const Cell& c, int v) {
   return -1;
 }
 
-// Interior angle (radians) of cell c at its local vertex k.
-double corner(const Mesh& m, const Cell& c, int k) {
+// Interior angle (radians) of cell c at its local vertex k, measured after the linear map T
+// (the identity in physical space; the frame's M in its metric space).
+double corner(const Mesh& m, const Cell& c, int k, const Mat2& T) {
   const Vec2& p = m.nodes[c.v[k]];
-  Vec2 en = m.nodes[c.v[(k + 1) % c.nv]] - p, ep = m.nodes[c.v[(k + c.nv - 1) % c.nv]] - p;
+  Vec2 en = T * (m.nodes[c.v[(k + 1) % c.nv]] - p), ep = T * (m.nodes[c.v[(k + c.nv - 1) % c.nv]] - p);
   double a = std::atan2(cross2(en, ep), en.dot(ep));
   return a < 0 ? a + 2 * kPi : a;
 }
@@ -47,11 +50,11 @@ bool cell_valid(const Mesh& m, const Cell& c) {
 struct LocalQuality {
   double angle = 1e300, sine = 1e300;
 };
-LocalQuality cells_quality(const Mesh& m, const std::vector<int>& cells) {
+LocalQuality cells_quality(const Mesh& m, const std::vector<int>& cells, const Mat2& T) {
   LocalQuality q;
   for (int c : cells)
     for (int k = 0; k < m.cells[c].nv; ++k) {
-      const double a = corner(m, m.cells[c], k);
+      const double a = corner(m, m.cells[c], k, T);
       q.angle = std::min(q.angle, a);
       q.sine = std::min(q.sine, std::sin(a));
     }
@@ -59,7 +62,7 @@ LocalQuality cells_quality(const Mesh& m, const std::vector<int>& cells) {
 }
 }  // namespace
 
-SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt) {
+SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt, const NodeMetric& metric) {
   SmoothStats st;
   const int nn = m.num_nodes();
   std::vector<char> fixed = boundary_node_flags(m);
@@ -104,6 +107,9 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt) {
     for (int i = 0; i < nn; ++i) {
       if (fixed[i]) continue;
       const Vec2 xi = m.nodes[i];
+      // The step is made in the space mapped by T (T x_i's star), then mapped back.
+      const Mat2 T = metric ? metric(xi) : Mat2::Identity();
+      const Mat2 Tinv = T.inverse();
       Vec2 sum = Vec2::Zero();
       double size = 0;
       int n = 0;
@@ -112,16 +118,16 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt) {
         const Cell& A = m.cells[e.a];
         const Cell& B = m.cells[e.b];
         const int ka = local_index(A, j), kb = local_index(B, j);
-        const double aA = corner(m, A, ka), aB = corner(m, B, kb);
+        const double aA = corner(m, A, ka, T), aB = corner(m, B, kb, T);
         const double wA = A.nv == 3 ? 60.0 : 90.0, wB = B.nv == 3 ? 60.0 : 90.0;
         const double target = (aA + aB) * wA / (wA + wB);
         // A lies counter-clockwise of (j -> i) when i follows j in A's vertex order.
         const double s = A.v[(ka + 1) % A.nv] == i ? 1.0 : -1.0;
         const double d = s * (aA - target);
-        const Vec2 u = xi - m.nodes[j];
+        const Vec2 u = T * (xi - m.nodes[j]);
         const double cs = std::cos(d), sn = std::sin(d);
-        sum += m.nodes[j] + Vec2(cs * u.x() - sn * u.y(), sn * u.x() + cs * u.y());
-        size += u.norm();
+        sum += m.nodes[j] + Tinv * Vec2(cs * u.x() - sn * u.y(), sn * u.x() + cs * u.y());
+        size += (xi - m.nodes[j]).norm();
         ++n;
       }
       if (n == 0) continue;
@@ -131,7 +137,7 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt) {
       const auto& cells = node_cells[i];
       std::vector<char> was_valid(cells.size());
       for (size_t k = 0; k < cells.size(); ++k) was_valid[k] = cell_valid(m, m.cells[cells[k]]);
-      const LocalQuality before = cells_quality(m, cells);
+      const LocalQuality before = cells_quality(m, cells, T);
       bool accepted = false;
       double f = 1.0;
       for (int h = 0; h <= opt.max_halvings; ++h, f *= 0.5) {
@@ -139,7 +145,7 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt) {
         bool ok = true;
         for (size_t k = 0; k < cells.size() && ok; ++k)
           if (was_valid[k] && !cell_valid(m, m.cells[cells[k]])) ok = false;
-        const LocalQuality after = ok ? cells_quality(m, cells) : LocalQuality{};
+        const LocalQuality after = ok ? cells_quality(m, cells, T) : LocalQuality{};
         if (ok && after.angle >= before.angle && after.sine >= std::min(before.sine, opt.min_sine)) {
           accepted = true;
           (h == 0 ? st.moves_full : st.moves_reduced)++;

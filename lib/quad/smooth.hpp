@@ -24,6 +24,17 @@
 // retried, else the node is left in place. Since a node only changes the angles of its own
 // cells, the global minimum angle can never decrease and no cell can invert.
 // Boundary nodes (on a free edge or a listed boundary edge) and hanging nodes are fixed.
+//
+// Metric space (optional NodeMetric T(x), e.g. the frame's M = V^-1 at x, det T > 0): node i's
+// step is made with every angle measured between mapped edge vectors T_i (x_k - x_l), T_i =
+// T(x_i) frozen for that node's step, the rotation done on T_i (x_i - x_j) and mapped back by
+// T_i^-1; the guard measures the angles and sines in the same space. On a mesh that fits the
+// frame the mapped cells are near-unit squares, so the smoothing straightens them without
+// moving nodes by the physical-space angles of stretched cells (which, near a boundary layer,
+// pull the first row of nodes away from the wall: docs/quadsmooth.md). The guarantees hold per
+// node in its own T_i-space; validity (no inverted cell) holds in physical space as before.
+#include <functional>
+
 #include "mesh/mesh.hpp"
 
 namespace quadapt {
@@ -45,7 +56,12 @@ struct SmoothStats {
   double max_displacement = 0;                       ///< largest accepted move (length units)
 };
 
-/// Smooths m in place (conforming triangle, quad or mixed mesh, cells counter-clockwise).
-SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt = {});
+using Mat2 = Eigen::Matrix2d;
+/// Linear map of the metric space at a point (the frame's M, det > 0); empty = physical space.
+using NodeMetric = std::function<Mat2(const Vec2&)>;
+
+/// Smooths m in place (conforming triangle, quad or mixed mesh, cells counter-clockwise), in
+/// physical space or, with `metric`, in the metric space (see above).
+SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt = {}, const NodeMetric& metric = {});
 
 }  // namespace quadapt
