@@ -27,7 +27,7 @@ ctl() { "$PY" "$here/loopctl.py" "$@"; }
 die() { echo "loop: error: $*" >&2; exit 2; }
 
 CASE="" MESH="" P="" METHOD="" MODE="" STEPS="" GROWTH="1.5" OUT="" MAXDOFS="0" FRACTION="0.3" FF_BY=""
-SEED="1" SMOOTH_BAMG="yes" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0
+SEED="1" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0
 while [ $# -gt 0 ]; do
   opt="$1"
   case "$opt" in
