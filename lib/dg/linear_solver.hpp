@@ -13,7 +13,8 @@
 //   auto           the measured default (docs/bench-dgsolve.md): gmres-2level when the problem
 //                  has diffusion and a coarse space is given, else gmres-bilu0 (with the block
 //                  order, e.g. downwind for advection); if that does not converge within
-//                  auto_max_iterations, the other iterative method, then umfpack.
+//                  auto_max_iterations (or its rate after a GMRES restart cycle projects more),
+//                  the other iterative method, then umfpack.
 // Iterative methods stop at ||b - A x|| <= rtol ||b|| (true residual checked at the end), or when
 // the true residual is at the rounding level of A x: ||r|| <= 1000 eps || |A| |x| || (normwise
 // backward error; stretched meshes with steep data have such a floor near 1e-12).

@@ -227,6 +227,37 @@ TEST_CASE("iterative solvers agree with the direct solver") {
   CHECK_THROWS_AS(parse_linear_solver("cholesky"), InputError);
 }
 
+TEST_CASE("auto solver gives up on a slow iterative method after a restart cycle") {
+  // GMRES(4) converges too slowly for a budget of 12 iterations with either preconditioner
+  // here; without giving up, auto would spend 12 + 12 iterations before UMFPACK. After a
+  // restart cycle whose rate projects past the budget, it leaves each method early.
+  Case cs = parse_case(R"J({"exact": "0.75*tanh(4*sin(10*y-5) - 24*x + 12)", "advection": [1.1, "-pi/e"],
+                            "diffusion": [["0.01*pi/e*12", "0.01*pi/e*3"], ["0.01*pi/e*3", "0.01*pi/e*20"]]})J",
+                       "ss.json");
+  Mesh m = make_structured_quads(12, 12);
+  DGDiscretization dg(m, cs, 2);
+  BlockSparseMatrix B;
+  Eigen::VectorXd b;
+  dg.assemble(B, b);
+  VertexCoarseSpace vc = make_vertex_coarse_space(m, 2);
+  LinearSolverOptions o;
+  o.coarse = &vc;
+  o.restart = 4;
+  o.auto_max_iterations = 12;
+  LinearSolveInfo info;
+  Eigen::VectorXd x = solve_linear(B, b, o, &info);
+  CHECK(info.solver == "gmres-2level->gmres-bilu0->umfpack");
+  CHECK(info.fallback);
+  CHECK(info.iterations < 24);  // 12 + 12 without the projection
+  CHECK(info.relative_residual < 1e-12);
+  // With the default restart length the same system converges within the budget of auto.
+  o.restart = 80;
+  o.auto_max_iterations = 300;
+  solve_linear(B, b, o, &info);
+  CHECK(info.solver == "gmres-2level");
+  CHECK(info.iterations < 30);
+}
+
 TEST_CASE("bad input: triangles, degree out of range, inverted cells") {
   Case cs = parse_case(R"J({"exact": "x", "advection": [1, 0]})J", "c.json");
   Mesh m = make_structured_quads(2, 2);
