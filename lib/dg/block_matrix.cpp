@@ -121,38 +121,51 @@ long long BlockSparseMatrix::find(int I, int J) const {
   return (it != e && *it == J) ? static_cast<long long>(it - cols_.begin()) : -1;
 }
 
-BlockSparseMatrix BlockSparseMatrix::permuted(const std::vector<int>& order) const {
-  if (static_cast<int>(order.size()) != nbr_) throw NumericalError("block matrix: permutation of the wrong size");
+void BlockSparseMatrix::permuted_pattern(const std::vector<int>& order, std::vector<long long>& row_start,
+                                         std::vector<int>& cols, std::vector<long long>& source) const {
+  if (!order.empty() && static_cast<int>(order.size()) != nbr_)
+    throw NumericalError("block matrix: permutation of the wrong size");
+  auto old_row = [&](int i) { return order.empty() ? i : order[i]; };
   std::vector<int> inv(nbr_, -1);
   for (int i = 0; i < nbr_; ++i) {
-    if (order[i] < 0 || order[i] >= nbr_ || inv[order[i]] >= 0) throw NumericalError("block matrix: not a permutation");
-    inv[order[i]] = i;
+    const int I = old_row(i);
+    if (I < 0 || I >= nbr_ || inv[I] >= 0) throw NumericalError("block matrix: not a permutation");
+    inv[I] = i;
   }
-  BlockSparseMatrix B;
-  B.nb_ = nb_;
-  B.nbr_ = nbr_;
-  B.row_start_.assign(nbr_ + 1, 0);
-  for (int i = 0; i < nbr_; ++i) B.row_start_[i + 1] = B.row_start_[i] + (row_start_[order[i] + 1] - row_start_[order[i]]);
-  B.cols_.resize(cols_.size());
-  B.values_.resize(values_.size());
-  const size_t bs = static_cast<size_t>(nb_) * nb_;
+  row_start.assign(nbr_ + 1, 0);
+  for (int i = 0; i < nbr_; ++i) row_start[i + 1] = row_start[i] + (row_start_[old_row(i) + 1] - row_start_[old_row(i)]);
+  cols.resize(cols_.size());
+  source.resize(cols_.size());
 #pragma omp parallel
   {
     std::vector<std::pair<int, long long>> row;
 #pragma omp for schedule(static)
     for (int i = 0; i < nbr_; ++i) {
-      const int I = order[i];
+      const int I = old_row(i);
       row.clear();
       for (long long k = row_start_[I]; k < row_start_[I + 1]; ++k) row.emplace_back(inv[cols_[k]], k);
       std::sort(row.begin(), row.end());
-      long long out = B.row_start_[i];
+      long long out = row_start[i];
       for (const auto& [j, k] : row) {
-        B.cols_[out] = j;
-        std::copy(values_.begin() + k * bs, values_.begin() + (k + 1) * bs, B.values_.begin() + out * bs);
-        ++out;
+        cols[out] = j;
+        source[out++] = k;
       }
     }
   }
+}
+
+BlockSparseMatrix BlockSparseMatrix::permuted(const std::vector<int>& order) const {
+  if (static_cast<int>(order.size()) != nbr_) throw NumericalError("block matrix: permutation of the wrong size");
+  BlockSparseMatrix B;
+  B.nb_ = nb_;
+  B.nbr_ = nbr_;
+  std::vector<long long> source;
+  permuted_pattern(order, B.row_start_, B.cols_, source);
+  B.values_.resize(values_.size());
+  const long long bs = static_cast<long long>(nb_) * nb_;
+#pragma omp parallel for schedule(static)
+  for (long long e = 0; e < static_cast<long long>(source.size()); ++e)
+    std::copy(values_.begin() + source[e] * bs, values_.begin() + (source[e] + 1) * bs, B.values_.begin() + e * bs);
   return B;
 }
 
@@ -192,36 +205,8 @@ void BlockILU0::compute(const BlockSparseMatrix& A, const std::vector<int>& orde
   n_ = A.block_rows();
   nb_ = A.block_size();
   order_ = order;
-  if (!order.empty() && static_cast<int>(order.size()) != n_)
-    throw NumericalError("block ILU: permutation of the wrong size");
-  // Pattern in elimination order; src[e] = A's block behind factor block e.
-  std::vector<int> inv(n_, -1);
-  for (int i = 0; i < n_; ++i) {
-    const int I = order.empty() ? i : order[i];
-    if (I < 0 || I >= n_ || inv[I] >= 0) throw NumericalError("block ILU: not a permutation");
-    inv[I] = i;
-  }
-  const auto& ars = A.row_start();
-  const auto& acols = A.cols();
-  rs_.assign(n_ + 1, 0);
-  for (int i = 0; i < n_; ++i) {
-    const int I = order.empty() ? i : order[i];
-    rs_[i + 1] = rs_[i] + (ars[I + 1] - ars[I]);
-  }
-  cols_.resize(acols.size());
-  std::vector<long long> src(acols.size());
-  std::vector<std::pair<int, long long>> row;
-  for (int i = 0; i < n_; ++i) {
-    const int I = order.empty() ? i : order[i];
-    row.clear();
-    for (long long k = ars[I]; k < ars[I + 1]; ++k) row.emplace_back(inv[acols[k]], k);
-    std::sort(row.begin(), row.end());
-    long long e = rs_[i];
-    for (const auto& [j, k] : row) {
-      cols_[e] = j;
-      src[e++] = k;
-    }
-  }
+  std::vector<long long> src;  // src[e] = A's block behind factor block e
+  A.permuted_pattern(order, rs_, cols_, src);
   diag_.assign(n_, -1);
   for (int i = 0; i < n_; ++i) {
     auto b = cols_.begin() + rs_[i], e = cols_.begin() + rs_[i + 1];

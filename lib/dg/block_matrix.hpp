@@ -48,6 +48,11 @@ class BlockSparseMatrix {
   /// The symmetrically permuted matrix B = P A P^T with block row/column order[i] of A becoming
   /// block i of B (`order` is a permutation of 0..block_rows()-1).
   BlockSparseMatrix permuted(const std::vector<int>& order) const;
+  /// The block pattern of permuted(order) without its values: row_start (block_rows + 1), cols
+  /// (sorted per row) and, per block of the permuted matrix, the index of A's block it holds.
+  /// An empty `order` is the identity.
+  void permuted_pattern(const std::vector<int>& order, std::vector<long long>& row_start, std::vector<int>& cols,
+                        std::vector<long long>& source) const;
 
  private:
   int nb_ = 0, nbr_ = 0;
