@@ -76,10 +76,7 @@ int main(int argc, char** argv) {
     int p = 0;
     {
       auto ph = tool.phase("read");
-      mesh = read_msh(in);
-      ValidateOptions v;
-      v.require = CellKind::Quads;
-      validate_mesh(mesh, in, v);
+      mesh = read_valid_msh(in, ValidateOptions::cells(CellKind::Quads));
       U = read_solution_field(mesh, field, in, p);
       cs = load_case(case_path);
       if (!cs.has_functional())

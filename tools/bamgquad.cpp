@@ -81,10 +81,7 @@ int main(int argc, char** argv) {
     Mesh frame;
     {
       auto ph = tool.phase("read");
-      frame = read_msh(in);
-      ValidateOptions v;
-      v.required_fields = {"Vinv"};
-      validate_mesh(frame, in, v);
+      frame = read_valid_msh(in, ValidateOptions::fields({"Vinv"}));
     }
     BamgQuadStats st;
     Mesh q;

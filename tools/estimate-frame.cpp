@@ -60,10 +60,7 @@ int main(int argc, char** argv) {
     Mesh sol;
     {
       auto ph = tool.phase("read");
-      sol = read_msh(in);
-      ValidateOptions v;
-      v.require = CellKind::Quads;
-      validate_mesh(sol, in, v);
+      sol = read_valid_msh(in, ValidateOptions::cells(CellKind::Quads));
       if (!exact.empty()) {
         if (p_exact < 1) throw InputError("", "-p must be >= 1");
         Expr e = parse_expression(exact);

@@ -168,10 +168,7 @@ int main(int argc, char** argv) {
         if (init != "multilevel" && init != "lattice") opt.exact_count = false;  // the thesis's procedure
         tool.option("metric", sampled ? "saddle sampled on " + std::to_string(grid) + "x" + std::to_string(grid) : "saddle");
       } else {
-        Mesh m = read_msh(in);
-        ValidateOptions vo;
-        vo.required_fields = {"Vinv"};
-        validate_mesh(m, in, vo);
+        Mesh m = read_valid_msh(in, ValidateOptions::fields({"Vinv"}));
         const double def = convention == "philip" ? 0.5 : 0.25;
         bg = std::make_unique<Background>(Background::from_frame(m, scale > 0 ? scale : def, in));
         opt.seed_mode = init == "uniform" ? SeedMode::Uniform

@@ -28,8 +28,7 @@ int main(int argc, char** argv) {
     Mesh m;
     {
       auto ph = tool.phase("read");
-      m = read_msh(in);
-      validate_mesh(m, in, opt);
+      m = read_valid_msh(in, opt);
     }
     {
       auto ph = tool.phase("write");

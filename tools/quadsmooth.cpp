@@ -58,13 +58,9 @@ int main(int argc, char** argv) {
     Mesh m, frame;
     {
       auto ph = tool.phase("read");
-      m = read_msh(in);
-      validate_mesh(m, in, {});
+      m = read_valid_msh(in);
       if (!frame_path.empty()) {
-        frame = read_msh(frame_path);
-        ValidateOptions fopt;
-        fopt.required_fields = {"Vinv"};
-        validate_mesh(frame, frame_path, fopt);
+        frame = read_valid_msh(frame_path, ValidateOptions::fields({"Vinv"}));
       }
     }
     const QualitySummary before = quality_summary(m);

@@ -54,10 +54,7 @@ int main(int argc, char** argv) {
     Mesh tri;
     {
       auto ph = tool.phase("read");
-      tri = read_msh(in);
-      ValidateOptions v;
-      v.require = CellKind::Triangles;
-      validate_mesh(tri, in, v);
+      tri = read_valid_msh(in, ValidateOptions::cells(CellKind::Triangles));
     }
     RecombineStats st;
     Mesh q;

@@ -59,10 +59,7 @@ int main(int argc, char** argv) {
     Mesh m;
     {
       auto ph = tool.phase("read");
-      m = read_msh(in);
-      ValidateOptions v;
-      v.require = CellKind::Quads;
-      validate_mesh(m, in, v);
+      m = read_valid_msh(in, ValidateOptions::cells(CellKind::Quads));
     }
     RefineStats s;
     Mesh r;

@@ -61,12 +61,9 @@ int main(int argc, char** argv) {
     Mesh shape, dwrmesh;
     {
       auto ph = tool.phase("read");
-      shape = read_msh(in);
-      ValidateOptions v;
-      validate_mesh(shape, in, v);
+      shape = read_valid_msh(in);
       if (!dwr.empty()) {
-        dwrmesh = read_msh(dwr);
-        validate_mesh(dwrmesh, dwr, v);
+        dwrmesh = read_valid_msh(dwr);
       }
     }
     const ShapeData sd = read_shape(shape, in);

@@ -22,11 +22,15 @@
 #include <string>
 
 #include "mesh/mesh.hpp"
+#include "mesh/validate.hpp"
 
 namespace quadapt {
 
 /// Reads a mesh with its fields. Throws InputError naming `path` and the problem.
 Mesh read_msh(const std::string& path);
+
+/// read_msh, then validate_mesh(mesh, path, v): how a tool takes an input mesh.
+Mesh read_valid_msh(const std::string& path, const ValidateOptions& v = {});
 
 /// Writes MSH 4.1 ASCII atomically (temporary file + rename).
 void write_msh(const Mesh& mesh, const std::string& path);

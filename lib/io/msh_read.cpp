@@ -540,4 +540,10 @@ Mesh read_msh(const std::string& path) {
   return read_msh(in, path);
 }
 
+Mesh read_valid_msh(const std::string& path, const ValidateOptions& v) {
+  Mesh m = read_msh(path);
+  validate_mesh(m, path, v);
+  return m;
+}
+
 }  // namespace quadapt

@@ -14,6 +14,19 @@ struct ValidateOptions {
   bool allow_hanging_nodes = true;            ///< 2:1 non-conforming quads are legal
   std::vector<std::string> required_groups;   ///< boundary names that must exist (case's BCs)
   std::vector<std::string> required_fields;   ///< cell or cell-node fields that must exist
+
+  /// Options requiring one cell kind (e.g. all quads).
+  static ValidateOptions cells(CellKind kind) {
+    ValidateOptions v;
+    v.require = kind;
+    return v;
+  }
+  /// Options requiring the named fields (e.g. {"Vinv"} for a frame file).
+  static ValidateOptions fields(std::vector<std::string> names) {
+    ValidateOptions v;
+    v.required_fields = std::move(names);
+    return v;
+  }
 };
 
 /// Throws InputError("PATH: problem") on: no cells; a cell type other than required; a
