@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
       "iterations, energy, grad_norm, converged and the whole convergence history. An "
       "optimiser that stops early still writes a valid mesh (\"converged\": false; with --strict "
       "exit code 1).");
-  std::string in, out, analytic, voronoi_out, init = "", convention = "quadapt";
+  std::string in, out, analytic, voronoi_out, init = "", convention = "quadapt", cells_kind;
   LpcvtOptions opt;
   double scale = -1;
   int grid = 16;
@@ -63,6 +63,9 @@ int main(int argc, char** argv) {
   app.add_option("--grid", grid, "With --analytic: background grid size")->capture_default_str()->check(CLI::Range(1, 4096));
   app.add_option("--initial", opt.initial_points,
                  "Interior points to start from (default: the requested count for frames, 20 for --analytic)");
+  app.add_option("--cells", cells_kind,
+                 "Voronoi cells of the energy: metric (frames' default: distances in each background cell's metric, so the points form a square lattice in the metric at any frame orientation; docs/lpcvt.md) or euclidean (the thesis's; --analytic's default)")
+      ->check(CLI::IsMember({"metric", "euclidean"}));
   app.add_option("--init", init,
                  "Initial points: lattice (frames' default: the frame-aligned lattice grown from one seed), "
                  "multilevel (coarse levels from density seeds, each finer level from the children of the "
@@ -216,6 +219,9 @@ int main(int argc, char** argv) {
       if (cells_per_triangle != 2) *bg = bg->scaled(std::sqrt(2 / cells_per_triangle));
       tool.report()["cells_per_triangle"] = cells_per_triangle;
       tool.option("metric_scale", bg->scale());
+      if (cells_kind.empty()) cells_kind = analytic.empty() ? "metric" : "euclidean";
+      bg->set_metric_cells(cells_kind == "metric");
+      tool.option("cells", cells_kind);
     }
     LpcvtResult r;
     {

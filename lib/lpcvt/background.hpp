@@ -108,6 +108,18 @@ class Background {
   bool is_analytic() const { return static_cast<bool>(analytic_); }
   double scale() const { return scale_; }
 
+  /// Voronoi cells in the metric (metric_graph.hpp): the partition of integration cell c uses
+  /// G_c = M^T M / tr(M^T M) of its (centroid) metric instead of the identity. Off by default
+  /// (the thesis's Euclidean cells); the frame defaults turn it on.
+  void set_metric_cells(bool on) { metric_cells_ = on; }
+  bool metric_cells() const { return metric_cells_; }
+  /// The partition metric of integration cell c: G_c (above) or the identity.
+  Mat2 partition_metric(int c) const {
+    if (!metric_cells_) return Mat2::Identity();
+    const Mat2 G = cells_[c].M.transpose() * cells_[c].M;
+    return G / G.trace();
+  }
+
   /// M_eff at y, y in integration cell c.
   Mat2 metric(int c, const Vec2& y) const;
   /// M_eff and its derivatives at y in cell c (zero derivatives in constant mode).
@@ -139,6 +151,7 @@ class Background {
   std::vector<int> first_cell_;  ///< per mesh cell: its first integration cell
   std::shared_ptr<const AnalyticMetric> analytic_;
   double scale_ = 1;
+  bool metric_cells_ = false;
   double area_ = 0, metric_area_ = 0;
   Vec2 lo_{0, 0}, hi_{0, 0};
   // locator: nx*ny buckets, CSR lists of cells

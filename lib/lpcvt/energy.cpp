@@ -72,6 +72,7 @@ void chain_vertices(const RvdPiece& pc, const Background& bg, const std::vector<
   const int m = static_cast<int>(pc.v.size());
   const Vec2& xi = x[pc.site];
   const IntegrationCell& Q = bg.cell(pc.cell);
+  const Mat2 Gq = bg.partition_metric(pc.cell);  // the identity for Euclidean cells
   acc.assign(m, Vec2::Zero());
   for (int k = 0; k < m; ++k) {
     const int km = k == 0 ? m - 1 : k - 1;
@@ -80,7 +81,7 @@ void chain_vertices(const RvdPiece& pc, const Background& bg, const std::vector<
     if (G[k].x() == 0 && G[k].y() == 0) continue;
     const Vec2& c = pc.v[k];
     auto normal = [&](int lab) -> Vec2 {
-      if (lab >= 0) return x[lab] - xi;
+      if (lab >= 0) return Gq * (x[lab] - xi);
       int e = -1 - lab;
       Vec2 t = Q.v[(e + 1) % Q.nv] - Q.v[e];
       return Vec2(t.y(), -t.x());
@@ -91,13 +92,14 @@ void chain_vertices(const RvdPiece& pc, const Background& bg, const std::vector<
     // lambda = -A^-T G with A = [n0; n1]
     const double lam0 = -(n1.y() * G[k].x() - n1.x() * G[k].y()) / det;
     const double lam1 = -(-n0.y() * G[k].x() + n0.x() * G[k].y()) / det;
+    // bisector g = (x_j - x_i)^T G (c - (x_i + x_j) / 2): dg/dx_i = G (x_i - c), dg/dx_j = G (c - x_j)
     if (la >= 0) {
-      gi += lam0 * (xi - c);
-      acc[km] += lam0 * (c - x[la]);
+      gi += lam0 * (Gq * (xi - c));
+      acc[km] += lam0 * (Gq * (c - x[la]));
     }
     if (lb >= 0) {
-      gi += lam1 * (xi - c);
-      acc[k] += lam1 * (c - x[lb]);
+      gi += lam1 * (Gq * (xi - c));
+      acc[k] += lam1 * (Gq * (c - x[lb]));
     }
   }
   for (int k = 0; k < m; ++k)
@@ -256,6 +258,7 @@ ClosedFn closed_for(int p) {
 
 struct EnergyWorkspace::Impl {
   std::unique_ptr<DelaunayGraph> dt;  // kept between evaluations (DelaunayGraph::update)
+  std::unique_ptr<MetricGraph> mg;    // metric cells: dt flipped in the metric
   long updates = 0, rebuilds = 0;
   std::vector<ContribBuf> contrib;  // per integration cell
   struct Thread {
@@ -329,15 +332,21 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
   std::unique_ptr<RestrictedVoronoi> rvd;
   if (ws) {
     EnergyWorkspace::Impl& W = *ws->impl;
+    const bool metric = bg.metric_cells();
     if (!W.dt) {
-      W.dt = std::make_unique<DelaunayGraph>(sites, false, true);
+      W.dt = std::make_unique<DelaunayGraph>(sites, metric, !metric);
       ++W.rebuilds;
     } else if (W.dt->update(sites)) {
       ++W.updates;
     } else {
       ++W.rebuilds;
     }
-    rvd = std::make_unique<RestrictedVoronoi>(bg, sites, *W.dt);
+    if (metric) {
+      W.mg = std::make_unique<MetricGraph>(build_metric_graph(bg, sites, *W.dt));
+      rvd = std::make_unique<RestrictedVoronoi>(bg, sites, *W.dt, W.mg.get());
+    } else {
+      rvd = std::make_unique<RestrictedVoronoi>(bg, sites, *W.dt);
+    }
   } else {
     rvd = std::make_unique<RestrictedVoronoi>(bg, sites);
   }

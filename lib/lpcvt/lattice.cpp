@@ -4,6 +4,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <cmath>
 #include <deque>
 
 namespace quadapt::lpcvt {
@@ -14,6 +15,31 @@ using DT = CGAL::Delaunay_triangulation_2<K>;
 using Point = K::Point_2;
 using VH = DT::Vertex_handle;
 }  // namespace
+
+Vec2 register_seed(const Vec2& y, const Mat2& M, const std::vector<Vec2>& fixed, double radius) {
+  // phases phi = frac(M (b - y)) of the fixed points b within metric distance `radius`; their
+  // circular mean per axis, weighted by the resultant length (a boundary that is not aligned
+  // with the lattice gives uniformly spread phases and no shift)
+  constexpr double two_pi = 6.283185307179586;
+  double c[2] = {0, 0}, s[2] = {0, 0};
+  int n = 0;
+  for (const Vec2& b : fixed) {
+    const Vec2 u = M * (b - y);
+    if (u.norm() > radius) continue;
+    for (int a = 0; a < 2; ++a) {
+      c[a] += std::cos(two_pi * u[a]);
+      s[a] += std::sin(two_pi * u[a]);
+    }
+    ++n;
+  }
+  if (n == 0) return y;
+  Vec2 shift;
+  for (int a = 0; a < 2; ++a) {
+    const double r = std::hypot(c[a], s[a]) / n;  // 1: all in phase, ~0: no preferred phase
+    shift[a] = r > 0.5 ? std::atan2(s[a], c[a]) / two_pi : 0.0;
+  }
+  return y + M.inverse() * shift;
+}
 
 std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& fixed, double delta,
                                  int max_points) {
@@ -73,7 +99,15 @@ std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& 
         const IntegrationCell& ic = bg.cell(q);
         Vec2 y = Vec2::Zero();
         for (int k = 0; k < ic.nv; ++k) y += ic.v[k] / ic.nv;
-        const Mat2 M = bg.metric(q, y);
+        Mat2 M = bg.metric(q, y);
+        // in phase with the boundary points where they lie on the lattice (e.g. a wall along
+        // the frame): otherwise rows start half a spacing off the boundary's and the
+        // minimisation leaves a dislocation where they meet
+        const Vec2 yr = register_seed(y, M, fixed, 12.0);
+        if (bg.locate(yr, q) >= 0) {
+          y = yr;
+          M = bg.metric(bg.locate(y, q), y);
+        }
         const double ds = std::max(1.0, delta);  // a new seed keeps a whole unit off
         const double R = ds * M.inverse().norm();
         if (crowded(y, M, R, hint, ds)) continue;

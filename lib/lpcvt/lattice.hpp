@@ -28,6 +28,12 @@
 
 namespace quadapt::lpcvt {
 
+/// The seed y moved by less than one lattice cell so that the lattice y + M^-1 Z^2 is in phase
+/// with the fixed points within metric distance `radius` of y, per lattice axis, where those are
+/// in phase with each other (circular mean of frac(M (b - y)) with resultant length > 0.5);
+/// unchanged where they are not (a boundary oblique to the frame).
+Vec2 register_seed(const Vec2& y, const Mat2& M, const std::vector<Vec2>& fixed, double radius);
+
 /// The interior points grown (above) given the fixed points `fixed`; at most `max_points`.
 std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& fixed,
                                  double delta = 0.75, int max_points = 10000000);

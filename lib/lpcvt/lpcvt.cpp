@@ -211,9 +211,29 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
   else
     r.stop = "last minimisation stopped early: " + last.stop;
   r.mesh = triangulate_domain(sites, r.nfixed, r.boundary.segments, r.boundary.segment_group, bg.mesh());
+  if (bg.metric_cells()) r.metric_flips = metric_flip_triangles(r.mesh, bg);
   say(std::to_string(r.sites.size()) + " points (requested " + fmt("%.0f", r.requested_points) + "), " +
       std::to_string(r.mesh.num_cells()) + " triangles; " + r.stop);
   return r;
+}
+
+long metric_flip_triangles(Mesh& m, const Background& bg) {
+  std::vector<std::array<int, 3>> tris(m.num_cells());
+  for (int c = 0; c < m.num_cells(); ++c) tris[c] = {m.cells[c].v[0], m.cells[c].v[1], m.cells[c].v[2]};
+  int hint = -1;
+  auto metric = [&](const Vec2& y) -> Mat2 {
+    const int c = bg.locate(y, hint);
+    if (c < 0) return Mat2::Zero();
+    hint = c;
+    return bg.cell(c).M;
+  };
+  // edges without a second triangle (the domain's boundary, holes) are never flipped
+  MetricGraph g = metric_delaunay(m.nodes, std::move(tris), metric);
+  for (int c = 0; c < m.num_cells(); ++c) {
+    m.cells[c].v = {g.tris[c][0], g.tris[c][1], g.tris[c][2], -1};
+    m.cells[c].nv = 3;
+  }
+  return g.flips;
 }
 
 nlohmann::json report_json(const LpcvtResult& r) {
@@ -226,6 +246,7 @@ nlohmann::json report_json(const LpcvtResult& r) {
   j["metric_area"] = r.metric_area;
   j["boundary_metric_length"] = r.boundary_metric_length;
   j["triangles"] = r.mesh.num_cells();
+  j["metric_flips"] = r.metric_flips;
   j["requested_triangles"] = 2 * r.metric_area;
   j["iterations"] = r.iterations;
   j["evaluations"] = r.evaluations;

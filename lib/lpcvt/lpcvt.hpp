@@ -21,6 +21,7 @@
 
 #include "lpcvt/background.hpp"
 #include "lpcvt/boundary.hpp"
+#include "lpcvt/metric_graph.hpp"
 #include "lpcvt/optimize.hpp"
 #include "lpcvt/seed.hpp"
 #include "lpcvt/split_merge.hpp"
@@ -77,6 +78,7 @@ struct LpcvtResult {
   std::vector<Vec2> sites;          ///< final sites (boundary first)
   int nfixed = 0;                   ///< number of boundary sites
   BoundaryPoints boundary;
+  long metric_flips = 0;            ///< metric cells: flips of the output triangulation (below)
   std::vector<IterationRecord> history;
   std::vector<CycleRecord> cycles;
   std::vector<LevelRecord> levels;  ///< coarsest first; one entry without multilevel
@@ -94,6 +96,11 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
 
 /// Report figures: points, requested_points, triangles, iterations, evaluations, cycles,
 /// energy, grad_norm, converged, stop, and the convergence history (per iteration and per cycle).
+/// Makes the triangulation m Delaunay in bg's metric (metric_graph.hpp): Lawson flips with the
+/// metric of the background cell at each edge's midpoint; boundary edges are never flipped.
+/// Returns the number of flips.
+long metric_flip_triangles(Mesh& m, const Background& bg);
+
 nlohmann::json report_json(const LpcvtResult& r);
 
 }  // namespace quadapt::lpcvt

@@ -66,14 +66,48 @@ void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2&
   clip_halfplane(v, label, n, n.dot(0.5 * (xi + xj)), j, tmp_v, tmp_l);
 }
 
+void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2& xi,
+                      const Vec2& xj, const Mat2& G, int j, std::vector<Vec2>& tmp_v,
+                      std::vector<int>& tmp_l) {
+  const Vec2 n = G * (xj - xi);
+  clip_halfplane(v, label, n, n.dot(0.5 * (xi + xj)), j, tmp_v, tmp_l);
+}
+
+MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
+                               const DelaunayGraph& dt) {
+  int hint = -1;
+  auto metric = [&](const Vec2& y) -> Mat2 {
+    int c = bg.locate(y, hint);
+    if (c < 0) return Mat2::Zero();  // a chord outside the domain: never flipped
+    hint = c;
+    return bg.cell(c).M;
+  };
+  return metric_delaunay(sites, dt.triangles(), metric);
+}
+
 RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites)
-    : bg_(&bg), sites_(&sites), own_(std::make_unique<DelaunayGraph>(sites, false, true)) {
+    : bg_(&bg), sites_(&sites),
+      own_(std::make_unique<DelaunayGraph>(sites, bg.metric_cells(), !bg.metric_cells())) {
   dt_ = own_.get();
+  if (bg.metric_cells()) {
+    own_mg_ = std::make_unique<MetricGraph>(build_metric_graph(bg, sites, *dt_));
+    mg_ = own_mg_.get();
+  }
   find_starts();
 }
 
 RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const DelaunayGraph& dt)
     : bg_(&bg), sites_(&sites), dt_(&dt) {
+  if (bg.metric_cells()) {
+    own_mg_ = std::make_unique<MetricGraph>(build_metric_graph(bg, sites, dt));
+    mg_ = own_mg_.get();
+  }
+  find_starts();
+}
+
+RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const DelaunayGraph& dt,
+                                     const MetricGraph* mg)
+    : bg_(&bg), sites_(&sites), dt_(&dt), mg_(mg) {
   find_starts();
 }
 
@@ -87,6 +121,33 @@ void RestrictedVoronoi::find_starts() {
     centroids[q] = g / c.nv;
   }
   start_ = dt_->nearest(centroids);
+  if (!mg_) return;
+  // nearest in G_Q: greedy walk over the metric graph from the Euclidean nearest site (exact for
+  // a Delaunay graph of the mapped sites; the centroid then lies in the start site's cell)
+  const std::vector<Vec2>& x = *sites_;
+  for (int q = 0; q < bg.num_cells(); ++q) {
+    int s = start_[q];
+    if (s < 0) continue;
+    const Mat2 G = bg.partition_metric(q);
+    auto dist = [&](int i) {
+      const Vec2 d = x[i] - centroids[q];
+      return d.dot(G * d);
+    };
+    double ds = dist(s);
+    for (int guard = 0; guard < 10000; ++guard) {
+      int best = -1;
+      for (const int* j = mg_->nbr_begin(s); j != mg_->nbr_end(s); ++j) {
+        const double dj = dist(*j);
+        if (dj < ds) {
+          ds = dj;
+          best = *j;
+        }
+      }
+      if (best < 0) break;
+      s = best;
+    }
+    start_[q] = s;
+  }
 }
 
 
@@ -108,7 +169,8 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
     qn[e] = Vec2(t.y(), -t.x());
     qd[e] = qn[e].dot(Q.v[e]);
   }
-  const bool poly = dt_->has_voronoi();
+  const bool poly = dt_->has_voronoi() && !mg_;
+  const Mat2 G = bg_->partition_metric(q);
   ws.queue.clear();
   ws.queue.push_back(s0);
   ws.stamp[s0] = gen;
@@ -120,7 +182,14 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
     p.site = i;
     p.cell = q;
     const int deg = dt_->degree(i);
-    if (poly && !dt_->on_hull(i) && deg >= 3) {
+    if (mg_) {
+      // Q clipped by the G_Q-bisectors of the metric neighbours
+      p.v.assign(Q.v.begin(), Q.v.begin() + Q.nv);
+      p.label.resize(Q.nv);
+      for (int e = 0; e < Q.nv; ++e) p.label[e] = -1 - e;
+      for (const int* j = mg_->nbr_begin(i); j != mg_->nbr_end(i) && !p.v.empty(); ++j)
+        clip_by_bisector(p.v, p.label, x[i], x[*j], G, *j, ws.tmp_v, ws.tmp_l);
+    } else if (poly && !dt_->on_hull(i) && deg >= 3) {
       // the Voronoi polygon, clipped by Q
       const Vec2* c = dt_->vor_begin(i);
       const int* nb = dt_->nbr_begin(i);

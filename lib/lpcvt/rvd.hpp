@@ -25,6 +25,7 @@
 
 #include "lpcvt/background.hpp"
 #include "lpcvt/delaunay.hpp"
+#include "lpcvt/metric_graph.hpp"
 
 namespace quadapt::lpcvt {
 
@@ -52,6 +53,11 @@ class RestrictedVoronoi {
   RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites);
   /// With the Delaunay graph of `sites` given (built with with_voronoi; kept alive by the caller).
   RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const DelaunayGraph& dt);
+  /// Metric cells (bg.metric_cells(), metric_graph.hpp): the neighbours are those of `mg` (the
+  /// metric Delaunay graph of `sites`, kept alive by the caller) and every piece is Q clipped by
+  /// the G_Q-bisectors of its neighbours. `dt` serves the start sites.
+  RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const DelaunayGraph& dt,
+                    const MetricGraph* mg);
 
   const DelaunayGraph& delaunay() const { return *dt_; }
   const std::vector<Vec2>& sites() const { return *sites_; }
@@ -69,14 +75,27 @@ class RestrictedVoronoi {
   const Background* bg_;
   const std::vector<Vec2>* sites_;
   std::unique_ptr<DelaunayGraph> own_;
+  std::unique_ptr<MetricGraph> own_mg_;
   const DelaunayGraph* dt_ = nullptr;
+  const MetricGraph* mg_ = nullptr;
   std::vector<int> start_;
-  void find_starts();  ///< per integration cell: nearest site to its centroid
+  void find_starts();  ///< per integration cell: nearest site to its centroid (in G_Q)
 };
+
+/// The metric Delaunay graph of `sites` for bg's partition metric (metric_graph.hpp): `dt` (built
+/// with triangles) flipped with the metric of the background cell at each edge's midpoint.
+MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
+                               const DelaunayGraph& dt);
 
 /// Clips the convex CCW polygon (v, label) by the half-plane closer to x_i than to x_j
 /// (Sutherland-Hodgman); new edges get label j. Output replaces (v, label).
 void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2& xi,
                       const Vec2& xj, int j, std::vector<Vec2>& tmp_v, std::vector<int>& tmp_l);
+/// The same with distances in the metric G (symmetric positive definite): the half-plane
+/// (y - x_i)^T G (y - x_i) <= (y - x_j)^T G (y - x_j), i.e. n . y <= n . (x_i + x_j) / 2 with
+/// n = G (x_j - x_i).
+void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2& xi,
+                      const Vec2& xj, const Mat2& G, int j, std::vector<Vec2>& tmp_v,
+                      std::vector<int>& tmp_l);
 
 }  // namespace quadapt::lpcvt

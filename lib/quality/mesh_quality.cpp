@@ -12,7 +12,7 @@ namespace quadapt {
 
 ShapeStats shape_stats(const Mesh& m, const std::vector<Eigen::Matrix2d>& M) {
   ShapeStats s;
-  double angle_sum = 0, sj_sum = 0;
+  double angle_sum = 0, sj_sum = 0, dev_sum = 0;
   long corners = 0, quad_corners = 0, near_right = 0;
   std::vector<double> ratios, orientations;
   s.angle_min_deg = INFINITY;
@@ -31,6 +31,7 @@ ShapeStats shape_stats(const Mesh& m, const std::vector<Eigen::Matrix2d>& M) {
       ++corners;
       if (cs.nv == 4) {
         ++quad_corners;
+        dev_sum += std::abs(a - 90.0);
         if (a >= 80.0 && a <= 100.0) ++near_right;
       }
     }
@@ -44,6 +45,7 @@ ShapeStats shape_stats(const Mesh& m, const std::vector<Eigen::Matrix2d>& M) {
   if (corners == 0) return ShapeStats{};
   s.angle_mean_deg = angle_sum / corners;
   s.quad_angle_share_80_100 = quad_corners ? static_cast<double>(near_right) / quad_corners : 0.0;
+  s.quad_angle_deviation_mean_deg = quad_corners ? dev_sum / quad_corners : 0.0;
   s.scaled_jacobian_mean = sj_sum / m.num_cells();
   s.edge_ratio_median = median(ratios);
   s.orientation_median_deg = axial_median_deg(orientations);
@@ -68,8 +70,37 @@ std::vector<Eigen::Matrix2d> frame_matrices(const Mesh& frame, const std::string
   return M;
 }
 
+void vertex_regularity(const Mesh& m, int& interior, int& irregular) {
+  // undirected cell edges with their multiplicity: an edge used once is a free (boundary) edge
+  std::vector<std::pair<int, int>> e;
+  for (const Cell& c : m.cells)
+    for (int k = 0; k < c.nv; ++k) {
+      const int a = c.v[k], b = c.v[(k + 1) % c.nv];
+      e.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(e.begin(), e.end());
+  std::vector<int> valence(m.num_nodes(), 0);
+  std::vector<char> on_boundary(m.num_nodes(), 0), used(m.num_nodes(), 0);
+  for (size_t i = 0; i < e.size();) {
+    size_t j = i;
+    while (j < e.size() && e[j] == e[i]) ++j;
+    ++valence[e[i].first];
+    ++valence[e[i].second];
+    used[e[i].first] = used[e[i].second] = 1;
+    if (j - i == 1) on_boundary[e[i].first] = on_boundary[e[i].second] = 1;
+    i = j;
+  }
+  interior = irregular = 0;
+  for (int v = 0; v < m.num_nodes(); ++v) {
+    if (!used[v] || on_boundary[v]) continue;
+    ++interior;
+    if (valence[v] != 4) ++irregular;
+  }
+}
+
 QualityReport measure_quality(const Mesh& m, const Mesh* frame, const std::string& frame_path) {
   QualityReport r;
+  vertex_regularity(m, r.interior_vertices, r.irregular_interior);
   r.nodes = m.num_nodes();
   r.cells = m.num_cells();
   r.quads = m.num_quads();
@@ -145,6 +176,7 @@ nlohmann::json shape_json(const ShapeStats& s) {
           {"angle_max_deg", s.angle_max_deg},
           {"angle_mean_deg", s.angle_mean_deg},
           {"quad_angle_share_80_100", s.quad_angle_share_80_100},
+          {"quad_angle_deviation_mean_deg", s.quad_angle_deviation_mean_deg},
           {"scaled_jacobian_min", s.scaled_jacobian_min},
           {"scaled_jacobian_mean", s.scaled_jacobian_mean},
           {"edge_ratio_median", s.edge_ratio_median},
@@ -162,6 +194,9 @@ nlohmann::json to_json(const QualityReport& r) {
   j["boundary"] = nlohmann::json::array();
   for (size_t g = 0; g < r.groups.size(); ++g)
     j["boundary"].push_back({{"name", r.groups[g].name}, {"tag", r.groups[g].tag}, {"edges", r.group_edges[g]}});
+  j["interior_vertices"] = r.interior_vertices;
+  j["irregular_interior_vertices"] = r.irregular_interior;
+  j["irregular_interior_share"] = r.interior_vertices ? static_cast<double>(r.irregular_interior) / r.interior_vertices : 0.0;
   j["physical"] = shape_json(r.physical);
   if (r.has_frame) {
     nlohmann::json metric = shape_json(r.metric);

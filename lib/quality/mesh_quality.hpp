@@ -24,6 +24,7 @@ namespace quadapt {
 struct ShapeStats {
   double angle_min_deg = 0, angle_max_deg = 0, angle_mean_deg = 0;  ///< over all corners
   double quad_angle_share_80_100 = 0;  ///< share of quad corners with angle in [80, 100] degrees
+  double quad_angle_deviation_mean_deg = 0;  ///< mean over quad corners of |angle - 90|
   double scaled_jacobian_min = 0, scaled_jacobian_mean = 0;           ///< over cells (cell minimum)
   double edge_ratio_median = 0;       ///< median over quads of longest / shortest edge
   double orientation_median_deg = 0;  ///< axial median over quads of the longest edge's direction
@@ -49,6 +50,8 @@ struct QualityReport {
   double area = 0;
   std::vector<BoundaryGroup> groups;
   std::vector<int> group_edges;
+  int interior_vertices = 0;          ///< vertices not on a free (boundary) edge
+  int irregular_interior = 0;         ///< interior vertices with valence (incident edges) != 4
   ShapeStats physical;
   bool has_frame = false;
   ShapeStats metric;
@@ -64,6 +67,9 @@ ShapeStats shape_stats(const Mesh& m, const std::vector<Eigen::Matrix2d>& M = {}
 /// (a reflection; M^T M, the metric, is unchanged). Throws InputError("PATH: ...") when the
 /// field is missing, has another component count, or a cell's M is not finite or singular.
 std::vector<Eigen::Matrix2d> frame_matrices(const Mesh& frame, const std::string& path);
+
+/// Interior vertices (not on a free edge) and those of them whose valence is not 4.
+void vertex_regularity(const Mesh& m, int& interior, int& irregular);
 
 /// All figures. `frame` may be null; `frame_path` names it in messages and in the report.
 QualityReport measure_quality(const Mesh& m, const Mesh* frame = nullptr, const std::string& frame_path = "");

@@ -1,0 +1,119 @@
+#include "lpcvt/metric_graph.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace quadapt::lpcvt {
+
+namespace {
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+struct Tri {
+  std::array<int, 3> v;
+  std::array<int, 3> nb;  ///< nb[k]: triangle across the edge opposite v[k] (-1: none)
+};
+
+int index_of(const std::array<int, 3>& a, int x) { return a[0] == x ? 0 : a[1] == x ? 1 : 2; }
+
+}  // namespace
+
+double metric_incircle(const Eigen::Matrix2d& M, const Vec2& a, const Vec2& b, const Vec2& c,
+                       const Vec2& d) {
+  const Vec2 md = M * d;
+  const Vec2 pa = M * a - md, pb = M * b - md, pc = M * c - md;
+  const double la = pa.squaredNorm(), lb = pb.squaredNorm(), lc = pc.squaredNorm();
+  const double det = la * cross2(pb, pc) - lb * cross2(pa, pc) + lc * cross2(pa, pb);
+  const double s = (la + lb + lc) / 3;
+  if (!(s > 0)) return 0;
+  return det / (s * s);
+}
+
+MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<int, 3>> tris,
+                            const EdgeMetric& metric) {
+  const int n = static_cast<int>(x.size());
+  const int nt = static_cast<int>(tris.size());
+  std::vector<Tri> T(nt);
+  {
+    std::unordered_map<long long, int> half;  // directed edge (a -> b) -> triangle * 3 + k
+    half.reserve(static_cast<size_t>(nt) * 3);
+    auto key = [&](int a, int b) { return static_cast<long long>(a) * n + b; };
+    for (int t = 0; t < nt; ++t) {
+      T[t].v = tris[t];
+      T[t].nb = {-1, -1, -1};
+      for (int k = 0; k < 3; ++k) half[key(tris[t][(k + 1) % 3], tris[t][(k + 2) % 3])] = t * 3 + k;
+    }
+    for (int t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k) {
+        auto it = half.find(key(tris[t][(k + 2) % 3], tris[t][(k + 1) % 3]));
+        if (it != half.end()) T[t].nb[k] = it->second / 3;
+      }
+  }
+  MetricGraph g;
+  // Edge stack, seeded with every interior edge once (t < neighbour), in triangle order
+  // (deterministic).
+  std::vector<std::pair<int, int>> stack;
+  stack.reserve(static_cast<size_t>(nt) * 3 / 2);
+  for (int t = nt - 1; t >= 0; --t)
+    for (int k = 2; k >= 0; --k)
+      if (T[t].nb[k] > t) stack.emplace_back(t, k);
+  const long cap = 20L * std::max(n, 1);
+  constexpr double tol = 1e-9;
+  while (!stack.empty()) {
+    auto [t, k] = stack.back();
+    stack.pop_back();
+    const int u = T[t].nb[k];
+    if (u < 0) continue;
+    const int c = T[t].v[k], p = T[t].v[(k + 1) % 3], q = T[t].v[(k + 2) % 3];
+    const int l = index_of(T[u].nb, t);
+    if (T[u].nb[l] != t) continue;
+    const int d = T[u].v[l];
+    if (T[u].v[(l + 1) % 3] != q || T[u].v[(l + 2) % 3] != p) continue;  // stale entry
+    const Eigen::Matrix2d M = metric(0.5 * (x[p] + x[q]));
+    if (!(metric_incircle(M, x[c], x[p], x[q], x[d]) > tol)) continue;
+    // strictly convex quadrilateral c p d q: both new triangles positive (relative to size)
+    const double s = (x[d] - x[c]).squaredNorm();
+    if (!(cross2(x[p] - x[c], x[d] - x[c]) > 1e-12 * s) || !(cross2(x[d] - x[c], x[q] - x[c]) > 1e-12 * s))
+      continue;
+    if (g.flips >= cap) {
+      g.capped = true;
+      break;
+    }
+    const int A = T[t].nb[(k + 1) % 3], B = T[t].nb[(k + 2) % 3];
+    const int C = T[u].nb[(l + 1) % 3], D = T[u].nb[(l + 2) % 3];
+    T[t].v = {c, p, d};
+    T[t].nb = {C, u, B};
+    T[u].v = {c, d, q};
+    T[u].nb = {D, A, t};
+    if (C >= 0) T[C].nb[index_of(T[C].nb, u)] = t;
+    if (A >= 0) T[A].nb[index_of(T[A].nb, t)] = u;
+    ++g.flips;
+    // the four outer edges may now fail the test
+    stack.emplace_back(t, 0);
+    stack.emplace_back(t, 2);
+    stack.emplace_back(u, 0);
+    stack.emplace_back(u, 1);
+  }
+  g.tris.resize(nt);
+  std::vector<std::vector<int>> nb(n);
+  for (int t = 0; t < nt; ++t) {
+    g.tris[t] = T[t].v;
+    for (int k = 0; k < 3; ++k) {
+      const int a = T[t].v[k], b = T[t].v[(k + 1) % 3];
+      nb[a].push_back(b);
+      nb[b].push_back(a);
+    }
+  }
+  g.ptr.assign(n + 1, 0);
+  for (int i = 0; i < n; ++i) {
+    std::sort(nb[i].begin(), nb[i].end());
+    nb[i].erase(std::unique(nb[i].begin(), nb[i].end()), nb[i].end());
+    g.ptr[i + 1] = g.ptr[i] + static_cast<int>(nb[i].size());
+  }
+  g.adj.reserve(g.ptr[n]);
+  for (auto& l : nb) g.adj.insert(g.adj.end(), l.begin(), l.end());
+  return g;
+}
+
+}  // namespace quadapt::lpcvt

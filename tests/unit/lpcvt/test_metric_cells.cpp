@@ -1,0 +1,160 @@
+// Voronoi cells in the frame's metric (lpcvt/metric_graph.hpp, issue #14): the metric in-circle
+// test, the flipped graph, the pieces (tiling, nearest in G_Q), the gradient against finite
+// differences, and the lattice seed's registration with the boundary.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include "helpers.hpp"
+#include "lpcvt/boundary.hpp"
+#include "lpcvt/energy.hpp"
+#include "lpcvt/lattice.hpp"
+#include "lpcvt/metric_graph.hpp"
+#include "lpcvt/rvd.hpp"
+
+using namespace lpcvt_test;
+
+namespace {
+
+double area_of(const std::vector<Vec2>& v) {
+  double a = 0;
+  for (size_t k = 0; k < v.size(); ++k) {
+    const Vec2 &p = v[k], &q = v[(k + 1) % v.size()];
+    a += p.x() * q.y() - p.y() * q.x();
+  }
+  return 0.5 * a;
+}
+
+std::vector<Vec2> boundary_and_random(const Background& bg, int n, unsigned seed, int& nfixed) {
+  BoundaryPoints b = mesh_boundary(bg, boundary_curves(bg));
+  std::vector<Vec2> s = b.points;
+  nfixed = static_cast<int>(s.size());
+  auto in = random_inside(bg, n, seed);
+  s.insert(s.end(), in.begin(), in.end());
+  return s;
+}
+
+Mat2 rotated_metric(double h1, double h2, double theta) {
+  Mat2 M;
+  const double c = std::cos(theta), s = std::sin(theta);
+  M << c / h1, s / h1, -s / h2, c / h2;
+  return M;
+}
+
+}  // namespace
+
+TEST_CASE("metric in-circle: invariant under the map, sign as the Euclidean test in the mapped plane") {
+  const Mat2 M = rotated_metric(0.5, 0.05, 0.7);
+  const Mat2 Minv = M.inverse();
+  // the unit square's corners in the mapped plane are co-circular; its centre is inside
+  const Vec2 a = Minv * Vec2(0, 0), b = Minv * Vec2(1, 0), c = Minv * Vec2(1, 1), d = Minv * Vec2(0, 1);
+  CHECK(std::abs(metric_incircle(M, a, b, c, d)) < 1e-12);
+  CHECK(metric_incircle(M, a, b, c, Minv * Vec2(0.5, 0.5)) > 0.1);
+  CHECK(metric_incircle(M, a, b, c, Minv * Vec2(2, 2)) < -0.1);
+  // a point inside the Euclidean circle of (a, b, c) but outside the metric one: the tests differ
+  const Mat2 I = Mat2::Identity();
+  const Vec2 far = Minv * Vec2(0.5, 1.3);
+  CHECK(metric_incircle(M, a, b, c, far) < 0);
+  (void)I;
+}
+
+TEST_CASE("metric flips give the Delaunay triangulation of the mapped points (constant metric)") {
+  const Mat2 M = rotated_metric(0.2, 0.02, 0.5);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(0, 1);
+  std::vector<Vec2> x;
+  for (int i = 0; i < 300; ++i) x.emplace_back(U(rng), U(rng));
+  DelaunayGraph dt(x, true, false);
+  MetricGraph g = metric_delaunay(x, dt.triangles(), [&](const Vec2&) { return M; });
+  CHECK(g.flips > 0);
+  CHECK_FALSE(g.capped);
+  // every interior edge is locally Delaunay in the metric: the empty-circle test holds for
+  // every triangle against every vertex (exhaustive: 300 points)
+  std::vector<Vec2> y(x.size());
+  for (size_t i = 0; i < x.size(); ++i) y[i] = M * x[i];
+  DelaunayGraph mapped(y, true, false);
+  std::vector<std::array<int, 2>> e1, e2;
+  auto edges = [](const std::vector<std::array<int, 3>>& tris) {
+    std::vector<std::array<int, 2>> e;
+    for (auto t : tris)
+      for (int k = 0; k < 3; ++k) e.push_back({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+    std::sort(e.begin(), e.end());
+    e.erase(std::unique(e.begin(), e.end()), e.end());
+    return e;
+  };
+  CHECK(edges(g.tris) == edges(mapped.triangles()));
+  // without the flips the graphs differ (the test can fail)
+  CHECK(edges(dt.triangles()) != edges(mapped.triangles()));
+}
+
+TEST_CASE("metric pieces tile the domain, and each lies nearest its own site in G_Q") {
+  for (int kind = 0; kind < 3; ++kind) {
+    Mesh m = kind == 0 ? saddle_square(5) : kind == 1 ? l_shape() : square_with_hole();
+    set_frame(m, 0.4, 0.08, 0.6);
+    Background bg = Background::from_frame(m, 1.0, "mem");
+    bg.set_metric_cells(true);
+    int nfixed = 0;
+    auto x = boundary_and_random(bg, 60, 3 + kind, nfixed);
+    RestrictedVoronoi rvd(bg, x);
+    double total = 0;
+    int wrong = 0;
+    for (const auto& p : rvd.all_pieces()) {
+      total += area_of(p.v);
+      const Mat2 G = bg.partition_metric(p.cell);
+      Vec2 z = Vec2::Zero();
+      for (auto& v : p.v) z += v / p.v.size();
+      const double di = (z - x[p.site]).dot(G * (z - x[p.site]));
+      for (size_t j = 0; j < x.size(); ++j)
+        if ((z - x[j]).dot(G * (z - x[j])) < di - 1e-12) ++wrong;
+    }
+    CHECK(total == doctest::Approx(bg.area()).epsilon(1e-12));
+    CHECK(wrong == 0);
+  }
+}
+
+TEST_CASE("metric cells: gradient matches central finite differences") {
+  for (int kind = 0; kind < 2; ++kind) {
+    Mesh m = kind == 0 ? saddle_square(4) : l_shape();
+    set_frame(m, 0.3, 0.06, 0.5 + kind);
+    Background bg = Background::from_frame(m, 1.0, "mem");
+    bg.set_metric_cells(true);
+    int nfixed = 0;
+    auto x = boundary_and_random(bg, 25, 9 + kind, nfixed);
+    EnergyResult r = lp_energy(bg, x, 6, true);
+    const double h = 1e-6 * std::sqrt(bg.area());
+    double worst = 0;
+    for (int i = nfixed; i < static_cast<int>(x.size()); ++i) {
+      Vec2 fd;
+      for (int d = 0; d < 2; ++d) {
+        auto at = [&](double off) {
+          std::vector<Vec2> y = x;
+          y[i][d] += off;
+          return lp_energy(bg, y, 6, false).energy;
+        };
+        fd[d] = (-at(2 * h) + 8 * at(h) - 8 * at(-h) + at(-2 * h)) / (12 * h);
+      }
+      worst = std::max(worst, (fd - r.grad[i]).norm() / r.grad[i].norm());
+    }
+    MESSAGE("metric cells, max relative FD error " << worst);
+    CHECK(worst < 1e-5);
+  }
+}
+
+TEST_CASE("lattice seed registration: in phase with an aligned boundary, unchanged by an oblique one") {
+  const Mat2 M = rotated_metric(0.2, 0.02, 0.0);
+  // boundary points of the unit square at the lattice spacing (aligned)
+  std::vector<Vec2> fixed;
+  for (int k = 0; k <= 50; ++k) fixed.emplace_back(0, 0.02 * k);
+  for (int k = 0; k <= 5; ++k) fixed.emplace_back(0.2 * k, 0);
+  const Vec2 y(0.03125, 0.03125);
+  const Vec2 r = register_seed(y, M, fixed, 12.0);
+  const Vec2 phase = M * r;
+  CHECK(std::abs(phase.x() - std::round(phase.x())) < 1e-9);
+  CHECK(std::abs(phase.y() - std::round(phase.y())) < 1e-9);
+  CHECK((r - y).norm() < 0.2);
+  // points spread evenly over all phases: no shift
+  std::vector<Vec2> spread;
+  for (int k = 0; k < 40; ++k) spread.emplace_back(0.2 * (k / 40.0), 0.02 * ((k * 7 % 40) / 40.0));
+  CHECK((register_seed(y, M, spread, 1e9) - y).norm() < 1e-12);
+}
