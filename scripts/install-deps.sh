@@ -4,7 +4,7 @@
 set -euo pipefail
 PKGS=(build-essential cmake pkg-config
       libeigen3-dev libcgal-dev libgmsh-dev gmsh libcli11-dev nlohmann-json3-dev
-      doctest-dev liblbfgspp-dev libsuitesparse-dev freefem++ python3 python3-matplotlib python3-numpy
+      doctest-dev liblbfgspp-dev liblemon-dev libsuitesparse-dev freefem++ python3 python3-matplotlib python3-numpy
       librsvg2-bin)
 missing=()
 for p in "${PKGS[@]}"; do

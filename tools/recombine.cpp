@@ -7,12 +7,19 @@
 #include "mesh/validate.hpp"
 #include "quad/recombine.hpp"
 #include "quad/report.hpp"
+#include "quality/mesh_quality.hpp"
 
 int main(int argc, char** argv) {
   using namespace quadapt;
-  Tool tool("recombine", "Blossom-Quad recombination of a triangulation, then split to all-quad",
-            "Reads a triangle mesh (e.g. from lpcvt) and pairs its triangles into quads with Gmsh's "
-            "Blossom-Quad (minimum-cost perfect matching; Mesh.RecombinationAlgorithm = 1). An odd "
+  Tool tool("recombine", "Triangles paired into quads (metric matching or Blossom-Quad), then split to all-quad",
+            "Reads a triangle mesh (e.g. from lpcvt) and pairs its triangles into quads. Default when "
+            "a frame is known (TRI's cell field Vinv, as lpcvt writes it, or --frame FRAME.msh): a "
+            "maximum-weight matching whose weight is each pair's quad quality in the frame's metric "
+            "(1 - max |corner angle - 90 deg| / 90 deg; pairs at or below --min-quality are never "
+            "made; the matching need not be perfect, so a lattice defect stays a lone triangle "
+            "instead of a chain of sheared pairs; docs/recombine.md). Otherwise (or --matching "
+            "blossom) Gmsh's Blossom-Quad (minimum-cost perfect matching in physical space; "
+            "Mesh.RecombinationAlgorithm = 1). For Blossom an odd "
             "triangle count is first made even by splitting the boundary triangle with the longest "
             "boundary edge, so that Blossom does not fall back to greedy matching. Then every quad "
             "is split into 4 and every remaining triangle into 3 (exact edge midpoints and cell "
@@ -39,6 +46,18 @@ int main(int argc, char** argv) {
                  "Clean-up: Gmsh's node relocation passes after recombination (Mesh.Smoothing)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  std::string matching, frame_path;
+  app.add_option("--matching", matching,
+                 "metric (default when a frame is known) or blossom (Gmsh; the default without a frame)")
+      ->check(CLI::IsMember({"metric", "blossom"}));
+  app.add_option("--frame", frame_path,
+                 "Frame file (background mesh with the cell field Vinv) for the metric matching, when TRI "
+                 "carries no Vinv field")
+      ->check(CLI::ExistingFile);
+  app.add_option("--min-quality", opt.metric.min_quality,
+                 "Metric matching: pairs of metric quality at or below this stay triangles")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.99));
   bool no_split = false;
   app.add_flag("--no-split", no_split, "Stop after Blossom: write the quad-dominant mesh");
 
@@ -55,7 +74,23 @@ int main(int argc, char** argv) {
     {
       auto ph = tool.phase("read");
       tri = read_valid_msh(in, ValidateOptions::cells(CellKind::Triangles));
+      const bool has_frame = !frame_path.empty() || tri.cell_field("Vinv");
+      if (matching.empty()) matching = has_frame ? "metric" : "blossom";
+      if (matching == "metric") {
+        if (!frame_path.empty()) {
+          tool.input(frame_path);
+          const Mesh frame = read_valid_msh(frame_path, ValidateOptions::fields({"Vinv"}));
+          opt.frame = frame_at_cells(tri, frame, frame_matrices(frame, frame_path));
+        } else if (tri.cell_field("Vinv")) {
+          opt.frame = frame_matrices(tri, in);
+        } else {
+          throw InputError(in, "--matching metric needs a frame: a cell field Vinv in TRI or --frame FRAME.msh");
+        }
+        opt.matching = RecombineOptions::Matching::Metric;
+      }
     }
+    tool.option("matching", matching);
+    if (matching == "metric") tool.option("min_quality", opt.metric.min_quality);
     RecombineStats st;
     Mesh q;
     {
@@ -64,8 +99,10 @@ int main(int argc, char** argv) {
     }
     auto rep = to_json(st);
     for (auto it = rep.begin(); it != rep.end(); ++it) tool.report()[it.key()] = it.value();
-    tool.log(std::to_string(st.triangles_in) + " triangles -> " + std::to_string(st.blossom.quads) + " quads + " +
-             std::to_string(st.blossom.triangles) + " triangles -> " + std::to_string(st.cells_out) +
+    const bool metric = opt.matching == RecombineOptions::Matching::Metric;
+    tool.log(std::to_string(st.triangles_in) + " triangles -> " +
+             std::to_string(metric ? st.metric.quads : st.blossom.quads) + " quads + " +
+             std::to_string(metric ? st.metric.triangles : st.blossom.triangles) + " triangles -> " + std::to_string(st.cells_out) +
              " cells; min angle " + std::to_string(st.quality.min_angle_deg) + " deg, min scaled Jacobian " +
              std::to_string(st.quality.min_scaled_jacobian));
     {

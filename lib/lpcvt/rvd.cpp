@@ -122,6 +122,7 @@ void RestrictedVoronoi::find_starts() {
   }
   start_ = dt_->nearest(centroids);
   if (!mg_) return;
+  tree_ = SiteTree(*sites_);
   // nearest in G_Q: greedy walk over the metric graph from the Euclidean nearest site (exact for
   // a Delaunay graph of the mapped sites; the centroid then lies in the start site's cell)
   const std::vector<Vec2>& x = *sites_;
@@ -134,17 +135,35 @@ void RestrictedVoronoi::find_starts() {
       return d.dot(G * d);
     };
     double ds = dist(s);
+    // neighbours and their neighbours (the graph is Delaunay for the midpoint metrics, which
+    // may differ from G_Q where the frame grades)
     for (int guard = 0; guard < 10000; ++guard) {
       int best = -1;
       for (const int* j = mg_->nbr_begin(s); j != mg_->nbr_end(s); ++j) {
-        const double dj = dist(*j);
-        if (dj < ds) {
-          ds = dj;
+        if (dist(*j) < ds) {
+          ds = dist(*j);
           best = *j;
         }
+        for (const int* k = mg_->nbr_begin(*j); k != mg_->nbr_end(*j); ++k)
+          if (dist(*k) < ds) {
+            ds = dist(*k);
+            best = *k;
+          }
       }
       if (best < 0) break;
       s = best;
+    }
+    // exact: every site in the box of the G-ellipse through s
+    {
+      const Mat2 Gi = G.inverse();
+      const Vec2 ext(std::sqrt(ds * Gi(0, 0)), std::sqrt(ds * Gi(1, 1)));
+      std::vector<int> cand;
+      tree_.query(centroids[q] - ext, centroids[q] + ext, cand);
+      for (int j : cand)
+        if (dist(j) < ds || (dist(j) == ds && j < s)) {
+          ds = dist(j);
+          s = j;
+        }
     }
     start_[q] = s;
   }
@@ -183,12 +202,42 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
     p.cell = q;
     const int deg = dt_->degree(i);
     if (mg_) {
-      // Q clipped by the G_Q-bisectors of the metric neighbours
+      // Q clipped by the G_Q-bisectors of the metric neighbours, then of every site within the
+      // security radius: the piece is exact when each site j with |x_j - x_i|_G < 2 R (R the
+      // largest G-distance from x_i to a vertex of the piece) has clipped it. The graph is the
+      // metric Delaunay graph for the metric at each edge's midpoint, which may differ from
+      // G_Q where the frame grades (and a walk over it may miss sites): the search uses the
+      // site tree, so the energy has no jumps when the graph flips.
       p.v.assign(Q.v.begin(), Q.v.begin() + Q.nv);
       p.label.resize(Q.nv);
       for (int e = 0; e < Q.nv; ++e) p.label[e] = -1 - e;
-      for (const int* j = mg_->nbr_begin(i); j != mg_->nbr_end(i) && !p.v.empty(); ++j)
-        clip_by_bisector(p.v, p.label, x[i], x[*j], G, *j, ws.tmp_v, ws.tmp_l);
+      if (ws.seen.size() != x.size() || ws.seen_gen == std::numeric_limits<int>::max()) {
+        ws.seen.assign(x.size(), 0);
+        ws.seen_gen = 0;
+      }
+      const int sg = ++ws.seen_gen;
+      ws.seen[i] = sg;
+      for (const int* j = mg_->nbr_begin(i); j != mg_->nbr_end(i); ++j) {
+        ws.seen[*j] = sg;
+        if (!p.v.empty()) clip_by_bisector(p.v, p.label, x[i], x[*j], G, *j, ws.tmp_v, ws.tmp_l);
+      }
+      // every site within 2R (the box of the G-ellipse |d|_G < 2R, from the site tree); R
+      // only shrinks as the piece is clipped, so one pass with the first R suffices
+      if (!p.v.empty()) {
+        double R2 = 0;
+        for (const Vec2& v : p.v) R2 = std::max(R2, (v - x[i]).dot(G * (v - x[i])));
+        const Mat2 Gi = G.inverse();
+        const Vec2 ext(2 * std::sqrt(R2 * Gi(0, 0)), 2 * std::sqrt(R2 * Gi(1, 1)));
+        ws.ring.clear();
+        tree_.query(x[i] - ext, x[i] + ext, ws.ring);
+        for (int j : ws.ring) {
+          if (ws.seen[j] == sg) continue;
+          const Vec2 d = x[j] - x[i];
+          if (d.dot(G * d) >= 4 * R2) continue;
+          clip_by_bisector(p.v, p.label, x[i], x[j], G, j, ws.tmp_v, ws.tmp_l);
+          if (p.v.empty()) break;
+        }
+      }
     } else if (poly && !dt_->on_hull(i) && deg >= 3) {
       // the Voronoi polygon, clipped by Q
       const Vec2* c = dt_->vor_begin(i);

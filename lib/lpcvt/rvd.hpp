@@ -26,6 +26,7 @@
 #include "lpcvt/background.hpp"
 #include "lpcvt/delaunay.hpp"
 #include "lpcvt/metric_graph.hpp"
+#include "lpcvt/site_tree.hpp"
 
 namespace quadapt::lpcvt {
 
@@ -44,6 +45,10 @@ struct RvdWorkspace {
   std::vector<int> queue;
   std::vector<Vec2> tmp_v;
   std::vector<int> tmp_l;
+  // metric cells: the sites examined for one piece (security-radius search)
+  std::vector<int> seen;    ///< per site: the piece (generation) that last examined it
+  int seen_gen = 0;
+  std::vector<int> ring;    ///< sites to examine
 };
 
 class RestrictedVoronoi {
@@ -78,6 +83,7 @@ class RestrictedVoronoi {
   std::unique_ptr<MetricGraph> own_mg_;
   const DelaunayGraph* dt_ = nullptr;
   const MetricGraph* mg_ = nullptr;
+  SiteTree tree_;  ///< metric cells: box queries of the security-radius search
   std::vector<int> start_;
   void find_starts();  ///< per integration cell: nearest site to its centroid (in G_Q)
 };

@@ -6,6 +6,7 @@
 
 #include "lpcvt/boundary.hpp"
 #include "lpcvt/delaunay.hpp"
+#include "lpcvt/rvd.hpp"
 
 namespace quadapt::lpcvt {
 
@@ -55,6 +56,24 @@ std::vector<MeasuredEdge> measure_edges(const Background& bg, const std::vector<
   std::set<std::pair<int, int>> bseg;
   for (auto s : boundary_segments) bseg.insert({std::min(s[0], s[1]), std::max(s[0], s[1])});
   DelaunayGraph dt(sites);
+  std::vector<MeasuredEdge> out;
+  int hint = -1;
+  if (bg.metric_cells()) {
+    // metric cells: the edges of the metric Delaunay graph (the neighbours the energy uses)
+    MetricGraph g = build_metric_graph(bg, sites, dt);
+    for (int i = 0; i < g.num_sites(); ++i)
+      for (const int* jp = g.nbr_begin(i); jp != g.nbr_end(i); ++jp) {
+        const int j = *jp;
+        if (j <= i) continue;
+        if (i < nfixed && j < nfixed && bseg.count({i, j})) continue;
+        const int cm = bg.locate(0.5 * (sites[i] + sites[j]), hint);
+        if (cm < 0) continue;
+        hint = cm;
+        const double L = segment_metric_length(bg, sites[i], sites[j], opt.q, opt.samples);
+        if (L >= 0) out.push_back({i, j, L});
+      }
+    return out;
+  }
   // Opposite vertices of each Delaunay edge, for the metric-Delaunay test.
   std::map<std::pair<int, int>, std::array<int, 2>> opposite;
   if (opt.metric_delaunay) {
@@ -65,8 +84,6 @@ std::vector<MeasuredEdge> measure_edges(const Background& bg, const std::vector<
         (o[0] < 0 ? o[0] : o[1]) = c;
       }
   }
-  std::vector<MeasuredEdge> out;
-  int hint = -1;
   for (auto e : dt.edges()) {
     const int i = e[0], j = e[1];
     const bool fi = i < nfixed, fj = j < nfixed;

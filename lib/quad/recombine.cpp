@@ -13,8 +13,13 @@ Mesh recombine_to_all_quads(const Mesh& tri_in, const RecombineOptions& opt, Rec
   st.triangles_in = tri_in.num_cells();
   Mesh tri = tri_in;
   tri.clear_fields();
-  st.parity_split = make_triangle_count_even(tri);
-  Mesh qd = blossom_recombine(tri, opt.blossom, &st.blossom);
+  Mesh qd;
+  if (opt.matching == RecombineOptions::Matching::Metric) {
+    qd = metric_pairing(tri, opt.frame, opt.metric, &st.metric);
+  } else {
+    st.parity_split = make_triangle_count_even(tri);
+    qd = blossom_recombine(tri, opt.blossom, &st.blossom);
+  }
   Mesh out = opt.split ? split_to_all_quads(qd) : std::move(qd);
   st.quality = quality_summary(out);
   st.cells_out = out.num_cells();

@@ -10,11 +10,16 @@
 // The boundary groups (names and tags) are carried through every step.
 #include "mesh/mesh.hpp"
 #include "quad/blossom.hpp"
+#include "quad/metric_matching.hpp"
 #include "quad/quality.hpp"
 
 namespace quadapt {
 
 struct RecombineOptions {
+  /// The matching: metric (quad/metric_matching.hpp; needs `frame`) or Gmsh's Blossom.
+  enum class Matching { Metric, Blossom } matching = Matching::Blossom;
+  std::vector<Eigen::Matrix2d> frame;  ///< Metric: one frame matrix M per input triangle
+  MetricMatchingOptions metric;
   BlossomOptions blossom;
   bool split = true;  ///< false: stop at the quad-dominant mesh (for inspection)
 };
@@ -23,11 +28,13 @@ struct RecombineStats {
   int triangles_in = 0;              ///< triangles of the input
   bool parity_split = false;         ///< one boundary triangle was split to make the count even
   BlossomStats blossom;              ///< quads / triangles after Blossom
+  MetricMatchingStats metric;        ///< quads / triangles after the metric matching
   int cells_out = 0;                 ///< cells of the result (all quads when split)
   QualitySummary quality;            ///< of the result
 };
 
-/// Runs steps 1-4 on `tri` (path is only used in error messages).
+/// Runs steps 1-4 (with the metric matching: 1, 3 = metric_pairing, 4; no parity split: the
+/// matching need not be perfect) on `tri` (path is only used in error messages).
 Mesh recombine_to_all_quads(const Mesh& tri, const RecombineOptions& opt = {}, RecombineStats* stats = nullptr,
                             const std::string& path = "mesh");
 

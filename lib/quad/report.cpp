@@ -37,6 +37,12 @@ nlohmann::json to_json(const RecombineStats& s) {
             {"reoriented", s.blossom.reoriented},
             {"fell_back", s.blossom.fell_back},
             {"fallback_reason", s.blossom.fallback_reason}}},
+          {"after_metric_matching",
+           {{"triangles_in", s.metric.triangles_in},
+            {"quads", s.metric.quads},
+            {"triangles", s.metric.triangles},
+            {"candidate_pairs", s.metric.candidate_pairs},
+            {"mean_metric_quality", s.metric.mean_quality}}},
           {"cells", s.cells_out},
           {"quality", to_json(s.quality)}};
 }

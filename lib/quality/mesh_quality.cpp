@@ -98,6 +98,24 @@ void vertex_regularity(const Mesh& m, int& interior, int& irregular) {
   }
 }
 
+std::vector<Eigen::Matrix2d> frame_at_cells(const Mesh& m, const Mesh& frame,
+                                            const std::vector<Eigen::Matrix2d>& Mf, int* outside) {
+  CellLocator locator(frame);
+  std::vector<Eigen::Matrix2d> M(m.num_cells());
+  int out = 0;
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const Vec2 x = cell_centroid(m, c);
+    int b = locator.locate(x);
+    if (b < 0) {
+      ++out;
+      b = locator.locate_or_nearest(x);
+    }
+    M[c] = Mf[b];
+  }
+  if (outside) *outside = out;
+  return M;
+}
+
 QualityReport measure_quality(const Mesh& m, const Mesh* frame, const std::string& frame_path) {
   QualityReport r;
   vertex_regularity(m, r.interior_vertices, r.irregular_interior);
@@ -131,17 +149,7 @@ QualityReport measure_quality(const Mesh& m, const Mesh* frame, const std::strin
   f.stretch_median = median(stretch);
   f.orientation_median_deg = axial_median_deg(axis);
 
-  CellLocator locator(*frame);
-  std::vector<Eigen::Matrix2d> M(m.num_cells());
-  for (int c = 0; c < m.num_cells(); ++c) {
-    const Vec2 x = cell_centroid(m, c);
-    int b = locator.locate(x);
-    if (b < 0) {
-      ++f.cells_outside;
-      b = locator.locate_or_nearest(x);
-    }
-    M[c] = Mf[b];
-  }
+  const std::vector<Eigen::Matrix2d> M = frame_at_cells(m, *frame, Mf, &f.cells_outside);
   r.metric = shape_stats(m, M);
 
   std::vector<double> lengths;

@@ -68,6 +68,11 @@ ShapeStats shape_stats(const Mesh& m, const std::vector<Eigen::Matrix2d>& M = {}
 /// field is missing, has another component count, or a cell's M is not finite or singular.
 std::vector<Eigen::Matrix2d> frame_matrices(const Mesh& frame, const std::string& path);
 
+/// The frame matrix Mf[b] of the frame cell b containing each cell's centroid of m (#cells of
+/// m; the nearest frame cell for centroids outside, counted in *outside).
+std::vector<Eigen::Matrix2d> frame_at_cells(const Mesh& m, const Mesh& frame,
+                                            const std::vector<Eigen::Matrix2d>& Mf, int* outside = nullptr);
+
 /// Interior vertices (not on a free edge) and those of them whose valence is not 4.
 void vertex_regularity(const Mesh& m, int& interior, int& irregular);
 

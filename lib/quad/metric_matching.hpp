@@ -1,0 +1,53 @@
+#pragma once
+// Triangles -> quads by a maximum-weight matching of the dual graph in the frame's metric
+// (issue #14; LEMON's MaxWeightedMatching, general graphs, Edmonds' blossom algorithm).
+//
+// Gmsh's Blossom-Quad (quad/blossom.hpp) finds a minimum-cost PERFECT matching with a
+// physical-space cost. On a lattice that is square in a stretched metric, (a) every physical
+// quad is a thin rectangle or parallelogram, so the physical cost hardly tells the frame's
+// rectangles from sheared pairs, and (b) perfection forces every parity defect where the
+// lattice meets the boundary to be joined to another by a chain of sheared pairs (a column of
+// 45-degree parallelograms in the metric across the domain).
+//
+// Here: nodes = triangles, an edge for every interior mesh edge whose two triangles form a
+// strictly convex quad; its quality in the metric
+//     q = 1 - max_k |theta_k - 90 deg| / 90 deg          (theta_k the quad's corner angles)
+// with the corners mapped by L^T, L L^T = (G_a + G_b) / 2, G = M^T M of the two triangles
+// (1 for a square in the metric, 0.5 for a 45-degree parallelogram). Weight
+//     w = round(1000 (q - min_quality))   (edges with q <= min_quality are left out)
+// and the matching maximises the total weight without having to be perfect: a chain of k
+// sheared pairs loses to two unmatched triangles as soon as k (q_square - q_sheared) exceeds
+// q_square - min_quality, so defects stay local. Unmatched triangles remain triangles (the split
+// to all-quad turns each into three quads). Integer weights: the result is exact and
+// deterministic (LEMON's ListGraph, nodes and edges added in cell / edge order).
+#include <Eigen/Core>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+
+namespace quadapt {
+
+struct MetricMatchingOptions {
+  double min_quality = 0.35;  ///< pairs of metric quality <= this are never matched
+};
+
+struct MetricMatchingStats {
+  int triangles_in = 0;
+  int quads = 0;               ///< matched pairs
+  int triangles = 0;           ///< left unmatched
+  double mean_quality = 0;     ///< of the matched pairs
+  int candidate_pairs = 0;     ///< dual edges with q > min_quality
+};
+
+/// Quality q (above) of the quad (a, b, c, d) (CCW) mapped by the 2x2 factor F (any F with
+/// F^T F = the metric): in [0, 1], 0 when not strictly convex.
+double metric_quad_quality(const Eigen::Matrix2d& F, const Vec2& a, const Vec2& b, const Vec2& c,
+                           const Vec2& d);
+
+/// Pairs the triangles of `tri` (all triangles, CCW, boundary groups kept) into quads; `M`: one
+/// 2x2 frame matrix per triangle (M^T M the metric; an empty vector: the identity, i.e. physical
+/// space). The result has the matched quads then the unmatched triangles, in cell order.
+Mesh metric_pairing(const Mesh& tri, const std::vector<Eigen::Matrix2d>& M,
+                    const MetricMatchingOptions& opt = {}, MetricMatchingStats* stats = nullptr);
+
+}  // namespace quadapt
