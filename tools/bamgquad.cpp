@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
             "builds the Riemannian metric 𝓜 = M^T M, scaled for the all-quad split: BAMG's unit "
             "edge is --edge-factor (default sqrt(32/sqrt(3)) = 4.30) frame half-axes, so that "
             "after Blossom-Quad pairs the triangles and every quad is split into 4 the cells have "
-            "the frame's target size 2 h1 x 2 h2 and the cell count matches int |det M|/4. The "
+            "the frame's target size and the cell count matches the frame's. The "
             "per-node metric is the area-weighted log-Euclidean mean of the cells around the node. "
             "FreeFEM's standalone BAMG (ffbamg, package freefem++; $QUADAPT_FFBAMG overrides the "
             "path) meshes the frame's domain (Gmsh 4.8.4's BAMG mis-orients rotated metrics), "
@@ -35,12 +35,12 @@ int main(int argc, char** argv) {
                  "BAMG's unit edge in frame half-axes (default sqrt(32/sqrt(3)) = 4.2985; 4 = 'twice the "
                  "final edge', which gives ~15% more cells)")
       ->check(CLI::PositiveNumber);
-  std::string convention = "quadapt";
+  std::string convention = "auto";
   app.add_option("--convention", convention,
-                 "Size convention of FRAME: quadapt (target cells 2h1 x 2h2, d = |det M|/4, DESIGN.md) or "
-                 "philip (the thesis's files: full-edge sizes, d = |det M|, so M_quadapt = 2 M_philip)")
+                 "Size convention of FRAME: auto (what the file states; no statement = philip), quadapt (target "
+                 "cells 2h1 x 2h2, d = |det M|/4) or philip (full-edge sizes, d = |det M|, M_quadapt = 2 M_philip)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"quadapt", "philip"}));
+      ->check(CLI::IsMember({"auto", "quadapt", "philip"}));
   app.add_flag("--arithmetic-mean", arithmetic, "Node metric = arithmetic (not log-Euclidean) mean of the cells'");
   app.add_option("--gradation", opt.ffbamg.gradation,
                  "BAMG metric smoothing: bound on the size ratio between neighbours (ffbamg -ratio; 0 = none)")
@@ -67,8 +67,6 @@ int main(int argc, char** argv) {
     tool.input(in);
     tool.output(out);
     opt.log_euclidean = !arithmetic;
-    opt.frame_scale = convention == "philip" ? 2.0 : 1.0;
-    tool.option("convention", convention);
     opt.ffbamg.split_boundary_edges = !no_split_edges;
     opt.recombine.blossom.gmsh_cleanup = !pairing;
     tool.option("edge_factor", opt.edge_factor > 0 ? opt.edge_factor : default_bamg_edge_factor());
@@ -78,10 +76,11 @@ int main(int argc, char** argv) {
     tool.option("blossom_mode", pairing ? "pairing" : "gmsh-cleanup");
     tool.option("runs", opt.max_runs);
     tool.option("calibration_tolerance", opt.calibration_tolerance);
-    Mesh frame;
+    Frame frame;
     {
       auto ph = tool.phase("read");
-      frame = read_valid_msh(in, ValidateOptions::fields({"Vinv"}));
+      frame = read_frame(in, convention == "auto" ? std::nullopt : std::optional(parse_size_convention(convention)));
+      tool.option("convention", to_string(frame.source));
     }
     BamgQuadStats st;
     Mesh q;

@@ -14,9 +14,9 @@ int main(int argc, char** argv) {
             "90 +- 10 degrees, the minimum and mean scaled Jacobian, the median edge ratio and orientation of "
             "the quads. With --frame FRAME.msh (a background mesh with the per-cell frame 'Vinv', M = V^-1 in "
             "the upper-left 2x2) the same figures in the frame's metric space ('metric': each cell mapped by the "
-            "M of the background cell containing its centroid), metric edge lengths |M e|/2 (1 = the target "
-            "edge 2h; share within [1/sqrt2, sqrt2]) and, in 'frame', the frame's continuous element count "
-            "sum(area |det M|)/4 beside the actual count. Definitions: docs/meshquality.md.");
+            "M of the background cell containing its centroid), metric edge lengths (1 = the target edge; share "
+            "within [1/sqrt2, sqrt2]) and, in 'frame', the frame's continuous element count beside the actual "
+            "count. The frame file states its size convention ($FrameConvention; none = PHiLiP's full-edge sizes). Definitions: docs/meshquality.md.");
   std::string in, frame_path, require = "any";
   tool.app().add_option("MESH", in, "Mesh to measure (.msh)")->required()->check(CLI::ExistingFile);
   tool.app().add_option("--frame", frame_path, "Frame file: background mesh with the cell field Vinv")
@@ -31,13 +31,12 @@ int main(int argc, char** argv) {
     if (tool.report_path().empty()) tool.set_report_path("-");
     ValidateOptions opt;
     opt.require = require == "quads" ? CellKind::Quads : require == "triangles" ? CellKind::Triangles : CellKind::Any;
-    Mesh m, frame;
+    Mesh m;
+    Frame frame;
     {
       auto ph = tool.phase("read");
       m = read_valid_msh(in, opt);
-      if (!frame_path.empty()) {
-        frame = read_valid_msh(frame_path, ValidateOptions::fields({"Vinv"}));
-      }
+      if (!frame_path.empty()) frame = read_frame(frame_path);
     }
     QualityReport r;
     {

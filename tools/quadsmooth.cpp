@@ -10,7 +10,7 @@
 #include "quad/quality.hpp"
 #include "quad/report.hpp"
 #include "quad/smooth.hpp"
-#include "quality/locate.hpp"
+#include "frame/frame.hpp"
 #include "quality/mesh_quality.hpp"
 
 int main(int argc, char** argv) {
@@ -55,13 +55,12 @@ int main(int argc, char** argv) {
     tool.option("tolerance", opt.tolerance);
     if (!frame_path.empty()) tool.input(frame_path);
     tool.option("space", frame_path.empty() ? "physical" : "metric");
-    Mesh m, frame;
+    Mesh m;
+    Frame frame;
     {
       auto ph = tool.phase("read");
       m = read_valid_msh(in);
-      if (!frame_path.empty()) {
-        frame = read_valid_msh(frame_path, ValidateOptions::fields({"Vinv"}));
-      }
+      if (!frame_path.empty()) frame = read_frame(frame_path);
     }
     const QualitySummary before = quality_summary(m);
     if (before.inverted > 0)
@@ -71,12 +70,10 @@ int main(int argc, char** argv) {
       auto ph = tool.phase("smooth");
       m.clear_fields();
       NodeMetric metric;
-      std::vector<Mat2> Mf;
-      std::unique_ptr<CellLocator> locator;
+      std::unique_ptr<FrameSampler> sampler;
       if (!frame_path.empty()) {
-        Mf = frame_matrices(frame, frame_path);  // reflections removed: det M > 0
-        locator = std::make_unique<CellLocator>(frame);
-        metric = [&](const Vec2& x) { return Mf[locator->locate_or_nearest(x)]; };
+        sampler = std::make_unique<FrameSampler>(frame);  // reflections removed: det M > 0
+        metric = [&](const Vec2& x) { return sampler->at(x); };
       }
       st = angle_smooth(m, opt, metric);
     }

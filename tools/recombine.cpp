@@ -7,7 +7,7 @@
 #include "mesh/validate.hpp"
 #include "quad/recombine.hpp"
 #include "quad/report.hpp"
-#include "quality/mesh_quality.hpp"
+#include "frame/frame.hpp"
 
 int main(int argc, char** argv) {
   using namespace quadapt;
@@ -79,10 +79,9 @@ int main(int argc, char** argv) {
       if (matching == "metric") {
         if (!frame_path.empty()) {
           tool.input(frame_path);
-          const Mesh frame = read_valid_msh(frame_path, ValidateOptions::fields({"Vinv"}));
-          opt.frame = frame_at_cells(tri, frame, frame_matrices(frame, frame_path));
+          opt.frame = read_frame(frame_path).at_cells(tri);
         } else if (tri.cell_field("Vinv")) {
-          opt.frame = frame_matrices(tri, in);
+          opt.frame = frame_from_mesh(tri, in).oriented();
         } else {
           throw InputError(in, "--matching metric needs a frame: a cell field Vinv in TRI or --frame FRAME.msh");
         }

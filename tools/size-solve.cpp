@@ -7,7 +7,7 @@
 #include "cli/tool.hpp"
 #include "io/msh.hpp"
 #include "mesh/validate.hpp"
-#include "sizing/frame.hpp"
+#include "sizing/size_frame.hpp"
 #include "sizing/size_field.hpp"
 
 int main(int argc, char** argv) {

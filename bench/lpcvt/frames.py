@@ -36,7 +36,7 @@ def write(path, n, frames):
             c, s = math.cos(th), math.sin(th)
             m = [c / h1, s / h1, -s / h2, c / h2]  # V^-1 = diag(1/h1, 1/h2) R(-theta)
             f.write(f"{k + 1} {m[0]!r} {m[1]!r} 0 {m[2]!r} {m[3]!r} 0 0 0 1\n")
-        f.write("$EndElementData\n")
+        f.write("$EndElementData\n$FrameConvention\nquadapt\n$EndFrameConvention\n")
 
 
 def main():

@@ -59,7 +59,9 @@ def main():
             i = j + n
             continue
         i += 1
-    s = a.factor if a.factor else math.sqrt(a.cells / (total / 4))
+    # cells per unit |det M|: 1/4 for quadapt's files ($FrameConvention quadapt), 1 for PHiLiP's (no section)
+    per = 0.25 if "$FrameConvention" in lines and lines[lines.index("$FrameConvention") + 1].strip() == "quadapt" else 1.0
+    s = a.factor if a.factor else math.sqrt(a.cells / (total * per))
     for start, _, n in blocks:
         for k in range(n):
             x = out[start + k].split()

@@ -5,18 +5,16 @@
 
 #include "bamg/frame_metric.hpp"
 #include "core/error.hpp"
-#include "quality/mesh_quality.hpp"
 
 namespace quadapt {
 
-Mesh bamg_quad(const Mesh& frame, const BamgQuadOptions& opt, BamgQuadStats* stats, const std::string& path) {
+Mesh bamg_quad(const Frame& fr, const BamgQuadOptions& opt, BamgQuadStats* stats, const std::string& path) {
+  const Mesh& frame = fr.mesh;
   if (frame.cells.empty()) throw InputError(path, "the frame mesh has no cells");
-  std::vector<Eigen::Matrix2d> M = frame_matrices(frame, path);
-  if (!(opt.frame_scale > 0)) throw InputError("frame scale must be positive");
-  for (auto& m : M) m *= opt.frame_scale;
+  const std::vector<Eigen::Matrix2d> M = fr.oriented();
   BamgQuadStats st;
   st.frame_cells = frame.num_cells();
-  st.target_complexity = frame_complexity(frame, M);
+  st.target_complexity = fr.target_cells();
   if (!(st.target_complexity > 0) || !std::isfinite(st.target_complexity))
     throw InputError(path, "the frame's element count int |det M|/4 is not positive and finite");
   st.edge_factor = opt.edge_factor > 0 ? opt.edge_factor : default_bamg_edge_factor();

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bamg/ffbamg.hpp"
+#include "frame/frame.hpp"
 #include "mesh/mesh.hpp"
 #include "quad/recombine.hpp"
 
@@ -12,9 +13,6 @@ namespace quadapt {
 
 struct BamgQuadOptions {
   double edge_factor = 0;      ///< BAMG unit edge in frame half-axes; 0 = default_bamg_edge_factor()
-  /// M is multiplied by this first: 1 for quadapt frames (d = |det M|/4, DESIGN.md §4), 2 for
-  /// PHiLiP's files, whose sizes are full edges (d = |det M|; the same as lpcvt --convention philip).
-  double frame_scale = 1;
   bool log_euclidean = true;   ///< vertex metric: log-Euclidean (else arithmetic) mean of the cells'
   /// Complexity calibration: when the all-quad mesh's cell count misses the frame's target by
   /// more than calibration_tolerance (relative), the whole metric is multiplied by
@@ -28,7 +26,7 @@ struct BamgQuadOptions {
 
 struct BamgQuadStats {
   int frame_cells = 0;
-  double target_complexity = 0;  ///< int |det M| / 4 dA: the frame's continuous cell count
+  double target_complexity = 0;  ///< Frame::target_cells(): the frame's continuous cell count
   double edge_factor = 0;
   int bamg_vertices = 0, bamg_triangles = 0;
   double bamg_seconds = 0;       ///< ffbamg wall time, all runs
@@ -41,11 +39,10 @@ struct BamgQuadStats {
   double first_ratio = 0;        ///< cells / target of the first, uncalibrated run
 };
 
-/// Runs the whole path on a frame mesh (cells with the 9-component 'Vinv' field, boundary
-/// groups). `path` names the frame in error messages. Throws InputError for a bad frame
-/// (missing/singular/non-finite Vinv, unsupported boundary), ExternalError when ffbamg or Gmsh
-/// fail, NumericalError when the result has inverted cells.
-Mesh bamg_quad(const Mesh& frame, const BamgQuadOptions& opt = {}, BamgQuadStats* stats = nullptr,
+/// Runs the whole path on a frame (frame/frame.hpp: its background's boundary groups are kept).
+/// `path` names the frame in error messages. Throws InputError for an unsupported boundary,
+/// ExternalError when ffbamg or Gmsh fail, NumericalError when the result has inverted cells.
+Mesh bamg_quad(const Frame& frame, const BamgQuadOptions& opt = {}, BamgQuadStats* stats = nullptr,
                const std::string& path = "frame");
 
 }  // namespace quadapt

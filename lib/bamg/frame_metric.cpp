@@ -69,12 +69,6 @@ std::vector<Eigen::Matrix2d> vertex_metrics(const Mesh& frame, const std::vector
   return acc;
 }
 
-double frame_complexity(const Mesh& frame, const std::vector<Eigen::Matrix2d>& M) {
-  double n = 0;
-  for (int c = 0; c < frame.num_cells(); ++c) n += std::abs(cell_area(frame, c)) * std::abs(M[c].determinant()) / 4.0;
-  return n;
-}
-
 InriaMesh bamg_background(const Mesh& frame) {
   InriaMesh b;
   b.vertices = frame.nodes;

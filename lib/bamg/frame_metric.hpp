@@ -37,10 +37,6 @@ std::vector<Eigen::Matrix2d> bamg_cell_metrics(const std::vector<Eigen::Matrix2d
 std::vector<Eigen::Matrix2d> vertex_metrics(const Mesh& frame, const std::vector<Eigen::Matrix2d>& cell_metric,
                                             bool log_euclidean = true);
 
-/// Continuous element count of the frame: sum over cells of area * |det M| / 4 (thesis eq. 5.1
-/// with d = 1/(4 h^2)).
-double frame_complexity(const Mesh& frame, const std::vector<Eigen::Matrix2d>& M);
-
 /// BAMG background: the frame's nodes; quads split along their shorter diagonal; boundary edges
 /// with ref = group index + 1; corners = nodes where the boundary changes group or turns by
 /// more than 30 degrees. Requires every free edge of the frame to be a boundary edge.

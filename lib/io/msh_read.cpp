@@ -92,6 +92,7 @@ class MshReader {
       else if (name == "ElementData") read_view(ViewKind::Element);
       else if (name == "ElementNodeData") read_view(ViewKind::ElementNode);
       else if (name == "InterpolationScheme") read_interpolation_scheme();
+      else if (name == "FrameConvention") read_frame_convention();
       else if (name.rfind("End", 0) == 0) c_.fail("unexpected $" + name + " (section without a start)");
       else c_.skip_section(name);
     }
@@ -401,6 +402,13 @@ class MshReader {
       return;
     }
     views_.push_back(std::move(v));
+  }
+
+  void read_frame_convention() {
+    const std::string_view t = c_.token("frame convention");
+    if (t.empty() || t[0] == '$') c_.fail("empty $FrameConvention section");
+    m_.frame_convention = std::string(t);
+    c_.expect_end("FrameConvention");
   }
 
   void read_interpolation_scheme() {

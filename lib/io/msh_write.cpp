@@ -223,6 +223,8 @@ void write_msh(const Mesh& m, std::ostream& os) {
     }
     o << "$EndElementNodeData\n";
   }
+  // Gmsh and other readers skip sections they do not know (MSH 4.1 format description).
+  if (!m.frame_convention.empty()) o << "$FrameConvention\n" << m.frame_convention << "\n$EndFrameConvention\n";
   o.flush();
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "frame/frame.hpp"
 #include "lpcvt/quadrature.hpp"
 #include "mesh/topology.hpp"
 
@@ -168,38 +169,22 @@ void Background::finish() {
   }
 }
 
-Background Background::from_frame(const Mesh& m, double scale, const std::string& path) {
+Background Background::from_frame(const Frame& f, double scale, const std::string& path) {
   if (!(scale > 0) || !std::isfinite(scale)) throw InputError("", "metric scale must be positive");
   Background bg;
   try {
-    bg.build(m);
+    bg.build(f.mesh);
   } catch (const InputError& e) {
     throw InputError(path, e.what());
   }
   bg.scale_ = scale;
-  const CellField* f = m.cell_field("Vinv");
-  if (!f) {
-    std::string have;
-    for (const auto& cf : m.cell_fields) have += (have.empty() ? "" : ", ") + cf.name;
-    throw InputError(path, "no cell field \"Vinv\" (the frame M = V^-1); fields present: " +
-                               (have.empty() ? std::string("none") : have));
-  }
-  if (f->ncomp != 9) throw InputError(path, "field \"Vinv\" has " + std::to_string(f->ncomp) + " components, expected 9");
-  if (f->num_cells() != m.num_cells() || f->values.size() != static_cast<size_t>(m.num_cells()) * 9)
-    throw InputError(path, "field \"Vinv\" has " + std::to_string(f->num_cells()) + " values for " +
-                               std::to_string(m.num_cells()) + " cells");
-  for (IntegrationCell& ic : bg.cells_) {
-    int c = ic.mesh_cell;
-    Mat2 M;
-    M << (*f)(c, 0), (*f)(c, 1), (*f)(c, 3), (*f)(c, 4);
-    if (!M.allFinite()) throw InputError(path, "non-finite frame \"Vinv\" in " + where(m, c));
-    double nrm = M.squaredNorm();
-    if (!(nrm > 0) || !(std::abs(M.determinant()) > 1e-12 * nrm))
-      throw InputError(path, "singular frame \"Vinv\" (det M = " + std::to_string(M.determinant()) + ") in " + where(m, c));
-    ic.M = scale * M;
-  }
+  for (IntegrationCell& ic : bg.cells_) ic.M = scale * f.M[ic.mesh_cell];
   bg.finish();
   return bg;
+}
+
+Background Background::from_frame(const Mesh& m, double scale, const std::string& path) {
+  return from_frame(frame_from_mesh(m, path, SizeConvention::Quadapt), scale, path);
 }
 
 Background Background::analytic(const Mesh& m, std::shared_ptr<const AnalyticMetric> f, double scale) {

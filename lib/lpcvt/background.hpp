@@ -34,6 +34,10 @@
 
 #include "mesh/mesh.hpp"
 
+namespace quadapt {
+struct Frame;
+}
+
 namespace quadapt::lpcvt {
 
 using Mat2 = Eigen::Matrix2d;
@@ -80,10 +84,12 @@ struct IntegrationCell {
 
 class Background {
  public:
-  /// Piecewise-constant metric from the frame: M_eff = scale * Vinv(cell). Validates the mesh
-  /// (cells, finite coordinates, positive areas) and the field (present, 9 components, finite,
-  /// non-singular). Throws InputError("path: ...") naming the cell at fault.
+  /// Piecewise-constant metric from a mesh's Vinv taken as it is (no size convention applied):
+  /// M_eff = scale * Vinv(cell). Validates the field (frame_from_mesh) and the mesh (cells,
+  /// finite coordinates, positive areas). Throws InputError("path: ...") naming the cell at fault.
   static Background from_frame(const Mesh& m, double scale, const std::string& path);
+  /// M_eff = scale * f.M (f in the quadapt convention, frame/frame.hpp); reflections kept.
+  static Background from_frame(const Frame& f, double scale, const std::string& path = "frame");
   /// Analytic metric M_eff(y) = scale * f(y) over the domain of mesh m (whose cells are used
   /// for integration and point location; fields ignored).
   static Background analytic(const Mesh& m, std::shared_ptr<const AnalyticMetric> f,

@@ -48,6 +48,16 @@ struct LpcvtOptions {
   double lattice_delta = 0.75;   ///< SeedMode::Lattice: rejection distance (metric units)
   bool exact_count = true;      ///< set the point count to the requested one at the start of each
                                 ///< level (multilevel) and before the polish, see adjust_count
+
+  /// The lpcvt tool's defaults for frames: lattice start, short relaxations (L-BFGS at most 100
+  /// iterations, delta 1e-3 over 10), energy weight |det M|^1 (docs/lpcvt.md, Convergence).
+  static LpcvtOptions for_frame();
+  /// The thesis's validation settings (§6.1): 20 uniform random start points, no exact count,
+  /// lmin 0, lmax sqrt(2), the unweighted energy, L-BFGS to delta 1e-10.
+  static LpcvtOptions for_analytic();
+  /// Applies the tool's --init word (lattice, multilevel, density, uniform; empty = the
+  /// default of the mode) to seed_mode, multilevel, initial_points and exact_count.
+  void set_init(const std::string& init, bool analytic);
 };
 
 /// One level of the multilevel start (level 0 = the final metric).

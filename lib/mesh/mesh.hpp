@@ -51,6 +51,10 @@ struct Mesh {
 
   std::vector<CellField> cell_fields;          ///< $ElementData views (theta, rho, B, h, Vinv, dwr, ...)
   std::vector<CellNodeField> cell_node_fields; ///< $ElementNodeData views (the DG solution u, ...)
+  /// The size convention of the frame field "Vinv" as the file states it (section
+  /// $FrameConvention, one word; empty when the file has none, e.g. PHiLiP's). Interpreted by
+  /// frame/frame.hpp only; travels with the fields and is cleared with them.
+  std::string frame_convention;
 
   int num_nodes() const { return static_cast<int>(nodes.size()); }
   int num_cells() const { return static_cast<int>(cells.size()); }
@@ -73,7 +77,7 @@ struct Mesh {
   void set_field(CellField f);
   void set_field(CellNodeField f);
   /// Removes every field (e.g. before writing a remeshed geometry).
-  void clear_fields() { cell_fields.clear(); cell_node_fields.clear(); }
+  void clear_fields() { cell_fields.clear(); cell_node_fields.clear(); frame_convention.clear(); }
 };
 
 // ----------------------------------------------------------------------------- geometry

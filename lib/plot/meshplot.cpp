@@ -108,16 +108,16 @@ GlyphStyle parse_glyph(const std::string& s) {
   throw InputError("unknown glyph '" + s + "' (use cross or parallelogram)");
 }
 
-std::pair<Vec2, Vec2> frame_vectors(const CellField& vinv, int c) {
+std::pair<Vec2, Vec2> frame_vectors(const CellField& vinv, int c, SizeConvention convention) {
   if (vinv.ncomp != 9) throw InputError("field '" + vinv.name + "' has " + std::to_string(vinv.ncomp) +
                                         " components; a frame needs 9 (row-major 3x3)");
   Eigen::Matrix2d M;
   M << vinv(c, 0), vinv(c, 1), vinv(c, 3), vinv(c, 4);
-  const double det = M.determinant();
-  if (!M.allFinite() || !std::isfinite(det) || std::abs(det) <= 1e-300 * M.cwiseAbs().maxCoeff())
-    throw NumericalError("cell " + std::to_string(c) + ": frame matrix M = V^-1 is singular or not finite");
-  Eigen::Matrix2d V = M.inverse();
-  return {V.col(0), V.col(1)};
+  try {
+    return frame_axes(quadapt_factor(convention) * M);
+  } catch (const NumericalError& e) {
+    throw NumericalError("cell " + std::to_string(c) + ": " + e.what());
+  }
 }
 
 void check_plot_field(const Mesh& m, const std::string& field, const std::string& source) {
@@ -319,10 +319,11 @@ std::string render_mesh_svg(const Mesh& m, const MeshPlotOptions& opt, MeshPlotS
       Vec2 c, v, w;
     };
     std::vector<G> gl;
+    const SizeConvention convention = stated_convention(m, opt.source);
     for (int c : visible) {
       Vec2 ctr = cell_centroid(m, c);
       if (!inside(ctr, W)) continue;
-      auto [v, w] = frame_vectors(*cf, c);
+      auto [v, w] = frame_vectors(*cf, c, convention);
       gl.push_back({ctr, v, w});
     }
     S.glyphs = static_cast<int>(gl.size());

@@ -27,6 +27,7 @@
 #include <string>
 #include <utility>
 
+#include "frame/frame.hpp"
 #include "mesh/mesh.hpp"
 #include "plot/colormap.hpp"
 
@@ -75,9 +76,10 @@ struct MeshPlotSummary {
   double width_px = 0, height_px = 0;
 };
 
-/// Frame vectors (v, w) of cell c: the columns of V = M^-1, M the upper-left 2x2 of the
-/// 9-component row-major Vinv. Throws NumericalError when M is singular or not finite.
-std::pair<Vec2, Vec2> frame_vectors(const CellField& vinv, int c);
+/// Frame vectors (v, w) of cell c: the half-axes, columns of V = M^-1, M the upper-left 2x2 of
+/// the 9-component row-major Vinv in the given size convention (frame/frame.hpp; meshplot uses
+/// the one the file states). Throws NumericalError when M is singular or not finite.
+std::pair<Vec2, Vec2> frame_vectors(const CellField& vinv, int c, SizeConvention convention = SizeConvention::Quadapt);
 
 /// Checks that `field` can be plotted on m (exists, scalar / DG / Vinv). Throws
 /// InputError("SOURCE: field 'X' ...") listing the available fields otherwise.

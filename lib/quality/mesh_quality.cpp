@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "quality/locate.hpp"
 #include "quality/measures.hpp"
 
 namespace quadapt {
@@ -52,24 +51,6 @@ ShapeStats shape_stats(const Mesh& m, const std::vector<Eigen::Matrix2d>& M) {
   return s;
 }
 
-std::vector<Eigen::Matrix2d> frame_matrices(const Mesh& frame, const std::string& path) {
-  const CellField* v = frame.cell_field("Vinv");
-  if (!v) throw InputError(path, "no 'Vinv' field (a frame file carries the per-cell frame Vinv)");
-  if (v->ncomp != 9) throw InputError(path, "field 'Vinv' has " + std::to_string(v->ncomp) + " components, expected 9");
-  std::vector<Eigen::Matrix2d> M(frame.num_cells());
-  for (int c = 0; c < frame.num_cells(); ++c) {
-    M[c] << (*v)(c, 0), (*v)(c, 1), (*v)(c, 3), (*v)(c, 4);
-    const double det = M[c].determinant();
-    if (!M[c].allFinite() || !std::isfinite(det) || det == 0)
-      throw InputError(path, "cell " + std::to_string(c + 1) + ": Vinv is not finite or singular (det M = " +
-                                 std::to_string(det) + ")");
-    // A reflection (det M < 0; PHiLiP writes such frames) describes the same metric M^T M:
-    // remove it so that mapped cells keep their counter-clockwise orientation.
-    if (det < 0) M[c].row(1) *= -1.0;
-  }
-  return M;
-}
-
 void vertex_regularity(const Mesh& m, int& interior, int& irregular) {
   // undirected cell edges with their multiplicity: an edge used once is a free (boundary) edge
   std::vector<std::pair<int, int>> e;
@@ -98,25 +79,7 @@ void vertex_regularity(const Mesh& m, int& interior, int& irregular) {
   }
 }
 
-std::vector<Eigen::Matrix2d> frame_at_cells(const Mesh& m, const Mesh& frame,
-                                            const std::vector<Eigen::Matrix2d>& Mf, int* outside) {
-  CellLocator locator(frame);
-  std::vector<Eigen::Matrix2d> M(m.num_cells());
-  int out = 0;
-  for (int c = 0; c < m.num_cells(); ++c) {
-    const Vec2 x = cell_centroid(m, c);
-    int b = locator.locate(x);
-    if (b < 0) {
-      ++out;
-      b = locator.locate_or_nearest(x);
-    }
-    M[c] = Mf[b];
-  }
-  if (outside) *outside = out;
-  return M;
-}
-
-QualityReport measure_quality(const Mesh& m, const Mesh* frame, const std::string& frame_path) {
+QualityReport measure_quality(const Mesh& m, const Frame* fr, const std::string& frame_path) {
   QualityReport r;
   vertex_regularity(m, r.interior_vertices, r.irregular_interior);
   r.nodes = m.num_nodes();
@@ -129,16 +92,16 @@ QualityReport measure_quality(const Mesh& m, const Mesh* frame, const std::strin
   for (const BoundaryEdge& e : m.boundary)
     if (e.group >= 0 && e.group < static_cast<int>(m.groups.size())) ++r.group_edges[e.group];
   r.physical = shape_stats(m);
-  if (!frame) return r;
+  if (!fr) return r;
 
   r.has_frame = true;
-  const std::vector<Eigen::Matrix2d> Mf = frame_matrices(*frame, frame_path);
+  const std::vector<Eigen::Matrix2d> Mf = fr->oriented();  // mapped cells stay counter-clockwise
   FrameStats& f = r.frame;
   f.file = frame_path;
-  f.cells = frame->num_cells();
+  f.cells = fr->num_cells();
+  f.continuous_complexity = fr->target_cells();
   std::vector<double> stretch, axis;
-  for (int c = 0; c < frame->num_cells(); ++c) {
-    f.continuous_complexity += std::abs(cell_area(*frame, c)) * std::abs(Mf[c].determinant()) / 4.0;
+  for (int c = 0; c < fr->num_cells(); ++c) {
     Eigen::JacobiSVD<Eigen::Matrix2d> svd(Mf[c], Eigen::ComputeFullV);
     const Eigen::Vector2d sv = svd.singularValues();  // decreasing
     stretch.push_back(sv(0) / sv(1));
@@ -149,7 +112,7 @@ QualityReport measure_quality(const Mesh& m, const Mesh* frame, const std::strin
   f.stretch_median = median(stretch);
   f.orientation_median_deg = axial_median_deg(axis);
 
-  const std::vector<Eigen::Matrix2d> M = frame_at_cells(m, *frame, Mf, &f.cells_outside);
+  const std::vector<Eigen::Matrix2d> M = fr->at_cells(m, &f.cells_outside);
   r.metric = shape_stats(m, M);
 
   std::vector<double> lengths;
@@ -160,7 +123,7 @@ QualityReport measure_quality(const Mesh& m, const Mesh* frame, const std::strin
     const Cell& cell = m.cells[c];
     for (int i = 0; i < cell.nv; ++i) {
       const Vec2 e = m.nodes[cell.v[(i + 1) % cell.nv]] - m.nodes[cell.v[i]];
-      const double l = (M[c] * e).norm() / 2.0;
+      const double l = (Frame::cell_metric_factor() * M[c] * e).norm();
       lengths.push_back(l);
       sum += l;
       if (l >= lo && l <= hi) ++in_range;

@@ -1,21 +1,19 @@
 #pragma once
 // Mesh quality figures reported by the meshquality tool (docs/meshquality.md), in physical
-// space and, given a frame (background mesh with per-cell Vinv, M = V^-1 in the upper-left 2x2
-// of the row-major 3x3; DESIGN.md sections 3-4), in the frame's metric space.
+// space and, given a frame (frame/frame.hpp, in the quadapt convention), in its metric space.
 //
-// Metric space: each cell's vertices are mapped by the M of the background cell that contains
-// the cell's centroid (point location: quality/locate.hpp; a centroid outside the background
-// takes the nearest background cell and is counted in frame.cells_outside).
-// Metric edge length of an edge e of a cell: |M e| / 2. The target element of the frame has
-// edges 2 h1 along v and 2 h2 along w (the representative parallelogram spans +-v, +-w), so a
-// target edge has metric length exactly 1; edges count per cell (an edge shared by two cells
-// is measured twice, once with each cell's M).
-// Continuous element count of the frame: N = int 1/(4 h^2) dA = sum over background cells of
-// area * |det M| / 4 (h^2 = h1 h2 = 1 / |det M|; thesis eq. 5.1 with d = 1/(4h^2)).
+// Metric space: each cell's vertices are mapped by the M (reflection removed) of the background
+// cell that contains the cell's centroid (FrameSampler; a centroid outside the background takes
+// the nearest background cell and is counted in frame.cells_outside).
+// Metric edge length of an edge e of a cell: |N e| with N = Frame::cell_metric, in which a
+// target cell's edge has length exactly 1; edges count per cell (an edge shared by two cells is
+// measured twice, once with each cell's M).
+// Continuous element count of the frame: Frame::target_cells() (thesis eq. 5.1).
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "frame/frame.hpp"
 #include "mesh/mesh.hpp"
 
 namespace quadapt {
@@ -39,7 +37,7 @@ struct EdgeLengthStats {
 struct FrameStats {
   std::string file;
   int cells = 0;                      ///< background cells
-  double continuous_complexity = 0;   ///< sum area |det M| / 4
+  double continuous_complexity = 0;   ///< Frame::target_cells()
   double stretch_median = 0;          ///< median of sigma_max / sigma_min of M (= h_long / h_short)
   double orientation_median_deg = 0;  ///< axial median of the long axis (the h_long direction)
   int cells_outside = 0;              ///< mesh cells whose centroid lies outside the background
@@ -63,21 +61,11 @@ struct QualityReport {
 /// matrices), else in physical space.
 ShapeStats shape_stats(const Mesh& m, const std::vector<Eigen::Matrix2d>& M = {});
 
-/// M = upper-left 2x2 of each cell's 9-component Vinv, its second row negated when det M < 0
-/// (a reflection; M^T M, the metric, is unchanged). Throws InputError("PATH: ...") when the
-/// field is missing, has another component count, or a cell's M is not finite or singular.
-std::vector<Eigen::Matrix2d> frame_matrices(const Mesh& frame, const std::string& path);
-
-/// The frame matrix Mf[b] of the frame cell b containing each cell's centroid of m (#cells of
-/// m; the nearest frame cell for centroids outside, counted in *outside).
-std::vector<Eigen::Matrix2d> frame_at_cells(const Mesh& m, const Mesh& frame,
-                                            const std::vector<Eigen::Matrix2d>& Mf, int* outside = nullptr);
-
 /// Interior vertices (not on a free edge) and those of them whose valence is not 4.
 void vertex_regularity(const Mesh& m, int& interior, int& irregular);
 
 /// All figures. `frame` may be null; `frame_path` names it in messages and in the report.
-QualityReport measure_quality(const Mesh& m, const Mesh* frame = nullptr, const std::string& frame_path = "");
+QualityReport measure_quality(const Mesh& m, const Frame* frame = nullptr, const std::string& frame_path = "");
 
 /// The report as JSON (the keys documented in docs/meshquality.md).
 nlohmann::json to_json(const QualityReport& r);

@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "estimate/error_model.hpp"
+#include "frame/frame.hpp"
 #include "mesh/topology.hpp"
 
 namespace quadapt {
@@ -46,7 +47,7 @@ struct Bounds {
 int apply_gradation(std::vector<double>& d, const std::vector<std::vector<int>>& nbrs, double g) {
   const int n = static_cast<int>(d.size());
   std::vector<double> h(n);
-  for (int k = 0; k < n; ++k) h[k] = 0.5 / std::sqrt(d[k]);
+  for (int k = 0; k < n; ++k) h[k] = size_for_density(d[k]);
   std::vector<double> h0 = h;
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
@@ -64,7 +65,7 @@ int apply_gradation(std::vector<double>& d, const std::vector<std::vector<int>>&
   int changed = 0;
   for (int k = 0; k < n; ++k) {
     if (h[k] < h0[k]) ++changed;
-    d[k] = 1.0 / (4 * h[k] * h[k]);
+    d[k] = cell_density(h[k]);
   }
   return changed;
 }
@@ -105,8 +106,8 @@ Common setup(const Mesh& shape, const SizeOptions& opt, const std::string& sourc
   c.hmin = opt.hmin > 0 ? opt.hmin : 1e-6 * std::sqrt(c.area);
   c.hmax = opt.hmax > 0 ? opt.hmax : 0.125 * std::sqrt(c.area);
   if (!(c.hmin < c.hmax)) throw InputError("need hmin < hmax (got " + num(c.hmin) + ", " + num(c.hmax) + ")");
-  c.b.dmin = 1 / (4 * c.hmax * c.hmax);
-  c.b.dmax = 1 / (4 * c.hmin * c.hmin);
+  c.b.dmin = cell_density(c.hmax);
+  c.b.dmax = cell_density(c.hmin);
   if (opt.gradation != 0) {
     if (!(opt.gradation > 1)) throw InputError("gradation must be > 1 (or 0 = off), got " + num(opt.gradation));
     c.graded = true;
@@ -127,7 +128,7 @@ void finish(SizeResult& r, const Common& c, const SizeOptions& opt) {
   r.hmin = c.hmin;
   r.hmax = c.hmax;
   for (int k = 0; k < nc; ++k) {
-    r.h[k] = 0.5 / std::sqrt(r.d[k]);
+    r.h[k] = size_for_density(r.d[k]);
     // anisotropy: |log ρ| <= log of min(ρ_max, (hmax/h)^2, (h/hmin)^2), so that also the long
     // axis h1 <= hmax and the short axis h2 >= hmin (d, hence the complexity, is unchanged)
     const double cap = std::max(1.0, std::min({opt.max_anisotropy, std::pow(c.hmax / r.h[k], 2),

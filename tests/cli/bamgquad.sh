@@ -45,7 +45,7 @@ for e in range(len(Q)):
     m = list(M)
     if bad and e == bad[0]: m = [float(bad[1])] * 4
     L.append("%d %s" % (q0 + 1 + e, " ".join("%.17g" % x for x in [m[0], m[1], 0, m[2], m[3], 0, 0, 0, 0])))
-L += ["$EndElementData"]
+L += ["$EndElementData", "$FrameConvention", "quadapt", "$EndFrameConvention"]
 open(out, "w").write("\n".join(L) + "\n")
 PY
 
@@ -83,7 +83,7 @@ fi
 # --- a real PHiLiP frame (no boundary groups in the file: named from the unit square's sides)
 F="$SHARED/reference/philip-fixtures/input_ss15_fb_p2_3.msh"
 if [ -f "$F" ]; then
-  bamgquad -q "$F" --convention philip -o "$T/ph.msh"
+  bamgquad -q "$F" -o "$T/ph.msh"  # no flag: the file states no convention, read as PHiLiP's
   python3 - "$T/ph.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1])); q = r["quality"]

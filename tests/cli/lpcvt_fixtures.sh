@@ -24,4 +24,17 @@ print(f"{sys.argv[1]}: {r['points']} points, {q['cells']} quads, {dofs} DOFs for
 assert abs(dofs / C - 1) <= 0.10, (dofs, C)
 PY
 done
+# No flag at all: a PHiLiP file states no size convention, so it is read with PHiLiP's full-edge
+# sizes and meshes to the 1296 cells it encodes (before quadapt wrote $FrameConvention, a quarter).
+name=ss15_fb_p2
+lpcvt "$D/input_${name}_3.msh" -o "$T/$name-tri.msh" -q
+recombine "$T/$name-tri.msh" -o "$T/$name-quad.msh" -q
+/usr/bin/python3 - "$T/$name-tri.json" "$T/$name-quad.json" <<'PY'
+import json, sys
+r, q = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+assert r["options"]["convention"] == "philip", r["options"]
+assert abs(r["target_cells"] - 1296) < 0.1, r["target_cells"]
+print(f"{sys.argv[1]}: no flag: {q['cells']} quads for the frame's 1296 ({q['cells'] / 1296:.3f})")
+assert abs(q["cells"] / 1296 - 1) <= 0.10, q["cells"]
+PY
 echo "lpcvt_fixtures: ok"

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Writes a test frame file like PHiLiP's (MSH 4.1 ASCII, no $Entities, no boundary lines):
+"""Writes a test frame file like PHiLiP's (MSH 4.1 ASCII, no $Entities, no boundary lines) but in
+quadapt's size convention ($FrameConvention quadapt; --philip: without it, as PHiLiP's files):
 an n x n quad grid on [x0,x1]x[y0,y1] (optionally with the top-right quarter removed: an
 L-shape) and per cell $ElementData "Vinv" = V^-1, V = R(theta) diag(h1, h2), 9 components.
 
@@ -23,6 +24,7 @@ def main():
     ap.add_argument("--lshape", action="store_true")
     ap.add_argument("--kind", choices=["constant", "symmetric", "saddle"], default="constant")
     ap.add_argument("--factor", type=float, default=1.0)
+    ap.add_argument("--philip", action="store_true", help="no $FrameConvention section (read as PHiLiP's sizes)")
     ap.add_argument("--corrupt", choices=["none", "nan", "singular", "nofield"], default="none")
     a = ap.parse_args()
     n = a.n
@@ -72,6 +74,8 @@ def main():
             for k, m in enumerate(frames):
                 f.write(f"{k + 1} {m[0]!r} {m[1]!r} 0 {m[2]!r} {m[3]!r} 0 0 0 1\n")
             f.write("$EndElementData\n")
+        if not a.philip:
+            f.write("$FrameConvention\nquadapt\n$EndFrameConvention\n")
 
 
 if __name__ == "__main__":

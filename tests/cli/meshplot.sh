@@ -48,7 +48,7 @@ for tag, vs in quads:
 out += ["$EndElementData", "$ElementData", "1", '"Vinv"', "1", "0", "3", "0", "9", str(len(quads))]
 for tag, _ in quads:
     out.append("%d %.17g %.17g 0 %.17g %.17g 0 0 0 1" % (tag, M[0][0], M[0][1], M[1][0], M[1][1]))
-out.append("$EndElementData")
+out += ["$EndElementData", "$FrameConvention", "quadapt", "$EndFrameConvention"]
 open("f.msh", "w").write("\n".join(lines).rstrip("\n") + "\n" + "\n".join(out) + "\n")
 PYEOF
 

@@ -80,6 +80,9 @@ $ElementData
 1
 1 8 0 0 0 2 0 0 0 0
 $EndElementData
+$FrameConvention
+quadapt
+$EndFrameConvention
 MSH
 meshquality "$S/examples/meshes/square16.msh" --frame "$T/frame.msh" > "$T/fr.json"
 python3 - "$T/fr.json" <<'PY'

@@ -25,8 +25,10 @@ Mesh constant_frame(int n, double theta_deg, double h1, double h2) {
   for (int c = 0; c < f.num_cells(); ++c)
     for (double x : {M(0, 0), M(0, 1), 0.0, M(1, 0), M(1, 1), 0.0, 0.0, 0.0, 0.0}) v.values.push_back(x);
   f.set_field(v);
+  f.frame_convention = "quadapt";
   return f;
 }
+Frame as_frame(const Mesh& m) { return frame_from_mesh(m, "f"); }
 }  // namespace
 
 TEST_CASE("inria .mesh: write and read back") {
@@ -55,7 +57,7 @@ TEST_CASE("frame metric: sizes, log-Euclidean vertex mean, complexity") {
   std::vector<Eigen::Matrix2d> M(f.num_cells());
   for (int c = 0; c < f.num_cells(); ++c) M[c] << f.cell_field("Vinv")->values[9 * c], f.cell_field("Vinv")->values[9 * c + 1],
                                                   f.cell_field("Vinv")->values[9 * c + 3], f.cell_field("Vinv")->values[9 * c + 4];
-  CHECK(frame_complexity(f, M) == doctest::Approx(1.0 / (4 * 0.05 * 0.005)));
+  CHECK(as_frame(f).target_cells() == doctest::Approx(1.0 / (4 * 0.05 * 0.005)));
   const double L = default_bamg_edge_factor();
   auto cm = bamg_cell_metrics(M, L);
   // the long axis (30 deg) has metric length 1 at L * h1, the short axis at L * h2
@@ -80,7 +82,7 @@ TEST_CASE("bamgquad: constant metric 0.1 along 30 deg, 0.01 across -> 10:1 quads
   // final quad edges 2 h1 = 0.1 along 30 degrees, 2 h2 = 0.01 across
   Mesh f = constant_frame(10, 30, 0.05, 0.005);
   BamgQuadStats st;
-  Mesh q = bamg_quad(f, {}, &st);
+  Mesh q = bamg_quad(as_frame(f), {}, &st);
   const auto s = stretch_summary(q);
   MESSAGE("target " << st.target_complexity << " cells " << st.cells << " (ratio " << st.complexity_ratio << "), BAMG "
                     << st.bamg_triangles << " triangles -> " << st.recombine.blossom.quads << " quads + "
@@ -112,18 +114,18 @@ TEST_CASE("bamgquad: bad frames are rejected before anything runs") {
   Mesh f = constant_frame(3, 0, 0.1, 0.1);
   Mesh z = f;
   for (int k = 0; k < 9; ++k) z.cell_field("Vinv")->values[9 * 4 + k] = 0;  // det M = 0
-  CHECK_THROWS_AS(bamg_quad(z), InputError);
+  CHECK_THROWS_AS(bamg_quad(as_frame(z)), InputError);
   Mesh n = f;
   n.cell_field("Vinv")->values[9 * 2] = NAN;
-  CHECK_THROWS_AS(bamg_quad(n), InputError);
+  CHECK_THROWS_AS(bamg_quad(as_frame(n)), InputError);
   Mesh none = f;
   none.clear_fields();
-  CHECK_THROWS_AS(bamg_quad(none), InputError);
+  CHECK_THROWS_AS(bamg_quad(as_frame(none)), InputError);
 }
 
 TEST_CASE("ffbamg: a missing executable is an ExternalError") {
   Mesh f = constant_frame(3, 0, 0.1, 0.1);
   BamgQuadOptions opt;
   opt.ffbamg.executable = "/nonexistent/ffbamg";
-  CHECK_THROWS_AS(bamg_quad(f, opt), ExternalError);
+  CHECK_THROWS_AS(bamg_quad(as_frame(f), opt), ExternalError);
 }

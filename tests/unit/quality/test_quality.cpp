@@ -7,7 +7,7 @@
 #include <random>
 
 #include "io/msh.hpp"
-#include "quality/locate.hpp"
+#include "mesh/locate.hpp"
 #include "quality/measures.hpp"
 #include "quality/mesh_quality.hpp"
 
@@ -93,7 +93,7 @@ TEST_CASE("metric space: a mesh of exact target elements measures as unit square
     Mesh m = make_structured_quads(4, 16, 0, 8, 0, 32);
     for (Vec2& p : m.nodes) p = V * p;
     CHECK(total_area(m) == doctest::Approx(1.0));
-    Mesh frame = constant_frame(M, -2, 2);
+    Frame frame = frame_from_mesh(constant_frame(M, -2, 2), "frame.msh", SizeConvention::Quadapt);
     QualityReport r = measure_quality(m, &frame, "frame.msh");
     REQUIRE(r.has_frame);
     CHECK(r.metric.angle_min_deg == doctest::Approx(90).epsilon(1e-9));
@@ -118,14 +118,14 @@ TEST_CASE("metric space: a mesh of exact target elements measures as unit square
 TEST_CASE("continuous count equals the cell count when the mesh tiles the frame's domain") {
   Mesh m = make_structured_quads(4, 16);  // cells 1/4 x 1/16 = 2h1 x 2h2 with h1 = 1/8, h2 = 1/32
   Eigen::Matrix2d M = Eigen::DiagonalMatrix<double, 2>(8, 32);
-  Mesh frame = constant_frame(M);
+  Frame frame = frame_from_mesh(constant_frame(M), "f", SizeConvention::Quadapt);
   QualityReport r = measure_quality(m, &frame, "f");
   CHECK(r.frame.continuous_complexity == doctest::Approx(64));
   CHECK(r.metric_edges.share_in_range == 1.0);
   // A reflected frame (det M < 0) is the same metric.
   Eigen::Matrix2d F = M;
   F.row(0) *= -1;
-  Mesh reflected = constant_frame(F);
+  Frame reflected = frame_from_mesh(constant_frame(F), "f", SizeConvention::Quadapt);
   QualityReport q = measure_quality(m, &reflected, "f");
   CHECK(q.metric.scaled_jacobian_min == doctest::Approx(1));
   CHECK(q.frame.continuous_complexity == doctest::Approx(64));
@@ -185,10 +185,14 @@ TEST_CASE("every PHiLiP fixture: measured as it is, and against its own frame") 
     CHECK(r.physical.scaled_jacobian_min > 0);
     CHECK(r.area == doctest::Approx(1.0));
     if (e.path().filename().string().rfind("input_", 0) == 0) {
-      QualityReport q = measure_quality(m, &m, e.path().string());
+      const Frame fr = frame_from_mesh(m, e.path().string());  // no $FrameConvention: PHiLiP's sizes
+      CHECK(fr.source == SizeConvention::Philip);
+      QualityReport q = measure_quality(m, &fr, e.path().string());
       CHECK(q.frame.cells_outside == 0);
       CHECK(q.metric.scaled_jacobian_min > 0);  // reflections removed: cells keep orientation
-      CHECK(q.frame.continuous_complexity > 0);
+      // PHiLiP normalises its step-3 frames to 1296 cells (integral of |det M_philip|)
+      if (e.path().filename().string().find("_3.msh") != std::string::npos)
+        CHECK(q.frame.continuous_complexity == doctest::Approx(1296).epsilon(1e-4));  // 6-digit file values
     }
     ++n;
   }

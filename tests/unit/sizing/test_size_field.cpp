@@ -12,7 +12,8 @@
 #include "estimate/estimate_frame.hpp"
 #include "estimate/interpolate.hpp"
 #include "mesh/topology.hpp"
-#include "sizing/frame.hpp"
+#include "frame/frame.hpp"
+#include "sizing/size_frame.hpp"
 #include "sizing/size_field.hpp"
 
 using namespace quadapt;

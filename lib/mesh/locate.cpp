@@ -1,4 +1,4 @@
-#include "quality/locate.hpp"
+#include "mesh/locate.hpp"
 
 #include <algorithm>
 #include <cmath>

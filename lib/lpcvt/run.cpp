@@ -1,0 +1,180 @@
+#include "lpcvt/run.hpp"
+
+#include <cmath>
+#include <memory>
+
+#include "core/error.hpp"
+#include "lpcvt/energy.hpp"
+#include "lpcvt/metric_filter.hpp"
+#include "lpcvt/quality.hpp"
+#include "lpcvt/triangulate.hpp"
+
+namespace quadapt::lpcvt {
+
+LpcvtOptions LpcvtOptions::for_frame() {
+  LpcvtOptions o;
+  o.lbfgs.max_iterations = 100;
+  o.lbfgs.delta = 1e-3;
+  o.lbfgs.past = 10;
+  o.lbfgs.gamma = 1;
+  o.set_init("", false);
+  return o;
+}
+
+LpcvtOptions LpcvtOptions::for_analytic() {
+  LpcvtOptions o;
+  o.lbfgs.gamma = 0;
+  o.split.lmin = 0;
+  o.split.lmax = std::sqrt(2.0);
+  o.set_init("", true);
+  return o;
+}
+
+void LpcvtOptions::set_init(const std::string& init, bool analytic) {
+  multilevel = init == "multilevel";
+  if (analytic) {
+    seed_mode = init == "density" ? SeedMode::Density : init == "lattice" ? SeedMode::Lattice : SeedMode::Uniform;
+    const bool random = init.empty() || init == "uniform" || init == "density";
+    initial_points = random ? 20 : -1;
+    if (init != "multilevel" && init != "lattice") exact_count = false;  // the thesis's procedure
+  } else {
+    seed_mode = init == "uniform" ? SeedMode::Uniform
+                : (init.empty() || init == "lattice") ? SeedMode::Lattice
+                                                        : SeedMode::Density;
+    initial_points = -1;
+  }
+}
+
+double frame_metric_scale() { return kSplit * Frame::cell_metric_factor(); }
+
+namespace {
+
+void say(const std::function<void(const std::string&)>& log, const std::string& s) {
+  if (log) log(s);
+}
+
+nlohmann::json filter_json(const FilterReport& f) {
+  return {{"cells_changed", f.cells_changed}, {"rescale", f.rescale},
+          {"max_neighbour_size_ratio_before", f.max_ratio_before}, {"max_neighbour_size_ratio_after", f.max_ratio_after}};
+}
+
+// Filters, complexity rescale and cells-per-triangle factor, common to both backgrounds.
+void finish_background(Background& bg, const LpcvtJob& job, nlohmann::json& rep,
+                       const std::function<void(const std::string&)>& log) {
+  if (job.smooth > 0 || job.gradation > 0) {
+    if (job.gradation != 0 && !(job.gradation > 1)) throw InputError("", "--gradation must be > 1");
+    if (job.smooth > 0) {
+      const FilterReport f = smooth_metric(bg, job.smooth);
+      rep["smoothing"] = filter_json(f);
+      rep["smoothing"]["passes"] = job.smooth;
+      say(log, "metric smoothed (" + std::to_string(job.smooth) + " log-Euclidean passes): largest neighbour size ratio " +
+                   std::to_string(f.max_ratio_before) + " -> " + std::to_string(f.max_ratio_after));
+    }
+    if (job.gradation > 0) {
+      const FilterReport f = grade_metric(bg, job.gradation);
+      rep["gradation"] = filter_json(f);
+      rep["gradation"]["growth"] = job.gradation;
+      rep["gradation"]["updates"] = f.passes;
+      say(log, "metric graded (growth " + std::to_string(job.gradation) + " per unit length, " + std::to_string(f.passes) +
+                   " updates): " + std::to_string(f.cells_changed) + " cells refined, largest neighbour size ratio " +
+                   std::to_string(f.max_ratio_before) + " -> " + std::to_string(f.max_ratio_after));
+    }
+  }
+  // Final all-quad cells the background asks for (docs/lpcvt.md, Sizes).
+  const double frame_cells = bg.metric_area() / (kSplit * kSplit);
+  rep["frame_cells"] = frame_cells;
+  if ((job.complexity > 0) != (job.degree >= 0)) throw InputError("", "--complexity and --degree go together");
+  if (job.complexity > 0) {
+    const double target = cells_for_complexity(job.complexity, job.degree);
+    const double f = std::sqrt(target / frame_cells);
+    bg = bg.scaled(f);
+    rep["complexity"] = job.complexity;
+    rep["degree"] = job.degree;
+    rep["metric_rescale"] = f;
+    say(log, "--complexity " + std::to_string(job.complexity) + " at degree " + std::to_string(job.degree) + ": " +
+                 std::to_string(target) + " final cells (the frame asks " + std::to_string(frame_cells) +
+                 "): metric scaled by " + std::to_string(f));
+  }
+  rep["target_cells"] = bg.metric_area() / (kSplit * kSplit);
+  if (job.cells_per_triangle != 2) bg = bg.scaled(std::sqrt(2 / job.cells_per_triangle));
+  rep["cells_per_triangle"] = job.cells_per_triangle;
+  rep["options"]["metric_scale"] = bg.scale();
+  bg.set_metric_cells(job.metric_cells);
+  rep["options"]["cells"] = job.metric_cells ? "metric" : "euclidean";
+}
+
+}  // namespace
+
+Background frame_background(const Frame& f, const LpcvtJob& job, nlohmann::json& report,
+                            const std::function<void(const std::string&)>& log) {
+  Background bg = Background::from_frame(f, job.scale > 0 ? job.scale : frame_metric_scale());
+  report["options"]["metric"] = "frame Vinv";
+  finish_background(bg, job, report, log);
+  return bg;
+}
+
+Background saddle_background(int grid, bool sampled, const LpcvtJob& job, nlohmann::json& report,
+                             const std::function<void(const std::string&)>& log) {
+  if (grid < 1) throw InputError("", "--grid must be positive");
+  const Mesh m = make_structured_quads(grid, grid, -1.3, 1.3, -1.3, 1.3);
+  const double s = job.scale > 0 ? job.scale : 1.0;
+  auto f = std::make_shared<SaddleMetric>();
+  Background bg = sampled ? Background::sampled(m, *f, s) : Background::analytic(m, f, s);
+  report["options"]["metric"] = sampled ? "saddle sampled on " + std::to_string(grid) + "x" + std::to_string(grid) : "saddle";
+  if ((job.smooth > 0 || job.gradation > 0) && !sampled) throw InputError("", "--smooth/--gradation need a frame or --sampled");
+  finish_background(bg, job, report, log);
+  return bg;
+}
+
+LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann::json& rep,
+                            const std::function<void(const std::string&)>& log) {
+  const LpcvtOptions& opt = job.lpcvt;
+  if (!(opt.split.lmin >= 0 && opt.split.lmax > opt.split.lmin)) throw InputError("", "need 0 <= --lmin < --lmax");
+  rep["options"]["weight"] = opt.lbfgs.gamma;
+  LpcvtResult r = run_lpcvt(bg, opt, log);
+  const TriangulationCheck chk = check_triangulation(r.mesh);
+  if (!chk.ok()) throw NumericalError("lpcvt: invalid output triangulation: " + chk.summary());
+  const EnergyTimers et = energy_timers();
+  rep["energy_seconds"] = {{"delaunay", et.delaunay}, {"integrate", et.integrate}, {"evaluations", et.evaluations},
+                           {"updates", et.updates}, {"rebuilds", et.rebuilds}};
+  const nlohmann::json figures = report_json(r);
+  for (auto& [k, v] : figures.items()) rep[k] = v;
+  rep["area"] = chk.area;
+  // recombine pairs the triangles and splits every quad into four: about 2 cells per triangle
+  rep["expected_cells"] = job.cells_per_triangle * r.mesh.num_cells();
+  rep["domain_area"] = bg.area();
+  const AngleStats am = triangle_angles(bg, r.mesh, true), ap = triangle_angles(bg, r.mesh, false);
+  rep["largest_angle_metric_median"] = am.median_largest;
+  rep["largest_angle_metric_80_100"] = am.frac_largest_80_100;
+  rep["largest_angle_median"] = ap.median_largest;
+  rep["largest_angle_80_100"] = ap.frac_largest_80_100;
+  const AlignmentStats al = voronoi_alignment(bg, r.sites, r.nfixed);
+  const AlignmentStats alp = voronoi_alignment(bg, r.sites, r.nfixed, true);
+  rep["voronoi_alignment_mean_deg"] = al.mean_deviation;
+  rep["voronoi_principal_alignment_mean_deg"] = alp.mean_deviation;
+  say(log, "largest triangle angles (median): " + std::to_string(am.median_largest) + " deg in the metric, " +
+               std::to_string(ap.median_largest) + " deg in physical space; Voronoi edges off the metric axes by " +
+               std::to_string(al.mean_deviation) + " deg, off the principal directions by " +
+               std::to_string(alp.mean_deviation) + " deg (length-weighted means)");
+  return r;
+}
+
+Frame meshed_frame(const Background& bg) {
+  Frame f;
+  f.mesh = bg.mesh();
+  f.mesh.clear_fields();
+  f.M.resize(f.mesh.num_cells());
+  for (int c = 0; c < f.mesh.num_cells(); ++c) f.M[c] = bg.mesh_cell_metric(c) / frame_metric_scale();
+  return f;
+}
+
+nlohmann::json voronoi_report(const Background& bg, const LpcvtResult& r, const nlohmann::json& report) {
+  nlohmann::json v;
+  v["initial"] = voronoi_json(bg, r.initial_sites, r.nfixed);
+  v["final"] = voronoi_json(bg, r.sites, r.nfixed);
+  v["history"] = report["history"];
+  v["cycle_history"] = report["cycle_history"];
+  return v;
+}
+
+}  // namespace quadapt::lpcvt

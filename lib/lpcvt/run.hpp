@@ -1,0 +1,61 @@
+#pragma once
+// The lpcvt tool as library calls, with the tool's defaults (docs/lpcvt.md): the background a
+// frame (or the thesis's saddle metric) gives after the optional filters and rescales, then
+// run_lpcvt with the output checks and the report figures.
+//
+// Sizes: lpcvt's points are two target cell edges apart, since recombine pairs the triangles
+// into quads and splits every quad into four (halving the edges): M_eff = kSplit * the frame's
+// cell metric (frame/frame.hpp), i.e. points 4 h1 x 4 h2 apart in the quadapt convention. The
+// final all-quad cells the background asks for are metric_area / kSplit^2 (= 2 per triangle).
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "frame/frame.hpp"
+#include "lpcvt/background.hpp"
+#include "lpcvt/lpcvt.hpp"
+
+namespace quadapt::lpcvt {
+
+/// Point spacing in target cell edges is 1 / kSplit (recombine's split into four).
+constexpr double kSplit = 0.5;
+
+/// Everything the lpcvt tool sets besides LpcvtOptions.
+struct LpcvtJob {
+  LpcvtOptions lpcvt = LpcvtOptions::for_frame();
+  double scale = 0;               ///< M_eff = scale * M (quadapt M); 0: frame_metric_scale() (frames), 1 (analytic)
+  int smooth = 0;                 ///< log-Euclidean smoothing passes of the metric (metric_filter.hpp)
+  double gradation = 0;           ///< size gradation (> 1), 0 = none
+  double complexity = 0;          ///< target DOFs (with degree): cells = complexity / (degree+1)^2; 0 = the frame's
+  int degree = -1;
+  double cells_per_triangle = 2;  ///< final cells per triangle recombine gives: the point count is sized by 2/R
+  bool metric_cells = true;       ///< Voronoi cells in the metric (Background::set_metric_cells); false: the thesis's
+};
+
+/// The default M_eff / M of a quadapt-convention frame: kSplit * cell-metric factor = 1/4.
+double frame_metric_scale();
+
+/// The background of a frame: M_eff = scale * M, then --smooth/--gradation, the complexity
+/// rescale and the cells-per-triangle factor. Writes report keys smoothing, gradation,
+/// frame_cells, complexity, degree, metric_rescale, target_cells, cells_per_triangle and
+/// options.metric_scale, options.cells. The saddle background's default is Euclidean cells
+/// (set job.metric_cells = false for the thesis's validation, as the tool does). Throws InputError for inconsistent options.
+Background frame_background(const Frame& f, const LpcvtJob& job, nlohmann::json& report,
+                            const std::function<void(const std::string&)>& log = {});
+/// The thesis's validation background: the saddle metric (eq. 6.1) on [-1.3,1.3]^2 over a
+/// grid x grid background, analytic or sampled at the cell centres; same filters and keys.
+Background saddle_background(int grid, bool sampled, const LpcvtJob& job, nlohmann::json& report,
+                             const std::function<void(const std::string&)>& log = {});
+
+/// run_lpcvt, the check of the output triangulation (NumericalError when invalid), and the
+/// report figures (report_json, areas, angles, Voronoi alignment, expected_cells).
+LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann::json& report,
+                            const std::function<void(const std::string&)>& log = {});
+
+/// The frame actually meshed (after filters and rescales), quadapt convention: M = M_eff / frame_metric_scale().
+Frame meshed_frame(const Background& bg);
+
+/// The initial and final clipped Voronoi diagrams with the convergence history (JSON).
+nlohmann::json voronoi_report(const Background& bg, const LpcvtResult& r, const nlohmann::json& report);
+
+}  // namespace quadapt::lpcvt
