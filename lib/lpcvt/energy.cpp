@@ -42,8 +42,6 @@ inline void power(double F, double p, double& f, double& g) {
   }
 }
 
-int g_min_parallel_sites = 2000;
-bool g_closed_form = true;
 
 struct Contribution {
   int site;
@@ -269,17 +267,28 @@ struct EnergyWorkspace::Impl {
   std::vector<Thread> threads;
 };
 EnergyWorkspace::EnergyWorkspace() : impl(std::make_unique<Impl>()) {}
+EnergyWorkspace::EnergyWorkspace(const EnergySettings& s) : settings(s), impl(std::make_unique<Impl>()) {}
+
+EnergyTimers& EnergyTimers::operator+=(const EnergyTimers& o) {
+  delaunay += o.delaunay;
+  integrate += o.integrate;
+  evaluations += o.evaluations;
+  updates += o.updates;
+  rebuilds += o.rebuilds;
+  return *this;
+}
 EnergyWorkspace::~EnergyWorkspace() = default;
 
 EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, double p,
                        bool gradient, EnergyWorkspace* ws, double gamma) {
   EnergyWorkspace local;
   EnergyWorkspace::Impl& W = ws ? *ws->impl : *local.impl;
+  const EnergySettings& set = ws ? ws->settings : local.settings;
   const std::vector<Vec2>& x = rvd.sites();
   const int nq = bg.num_cells();
   const TriangleRule& rule = rule_for_exponent(p);
   const int ip = static_cast<int>(std::lround(p));
-  const ClosedFn closed = g_closed_form && !bg.is_analytic() && ip == p ? closed_for(ip) : nullptr;
+  const ClosedFn closed = set.closed_form && !bg.is_analytic() && ip == p ? closed_for(ip) : nullptr;
   std::vector<double> eq(nq, 0.0);
   if (gradient) {
     W.contrib.resize(nq);
@@ -288,7 +297,7 @@ EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, doubl
   std::vector<long> npieces(nq, 0);
   // Parallel only when there is enough work: small problems lose more to thread start-up and
   // (on a loaded machine) to spinning threads than they gain.
-  const bool parallel = static_cast<int>(x.size()) >= g_min_parallel_sites && nq >= 8;
+  const bool parallel = static_cast<int>(x.size()) >= std::max(0, set.min_parallel_sites) && nq >= 8;
   const int nthreads = parallel ? std::max(1, omp_get_max_threads()) : 1;
   if (static_cast<int>(W.threads.size()) < nthreads) W.threads.resize(nthreads);
 #pragma omp parallel num_threads(nthreads) if (parallel)
@@ -319,12 +328,6 @@ EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, doubl
   return r;
 }
 
-void set_min_parallel_sites(int n) { g_min_parallel_sites = std::max(0, n); }
-void set_closed_form(bool on) { g_closed_form = on; }
-
-EnergyTimers g_timers;
-EnergyTimers energy_timers() { return g_timers; }
-
 EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, double p,
                        bool gradient, EnergyWorkspace* ws, double gamma) {
   using Clock = std::chrono::steady_clock;
@@ -353,13 +356,14 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
   const auto t1 = Clock::now();
   EnergyResult r = lp_energy(*rvd, bg, p, gradient, ws, gamma);
   const auto t2 = Clock::now();
-  g_timers.delaunay += std::chrono::duration<double>(t1 - t0).count();
   if (ws) {
-    g_timers.updates = ws->impl->updates;
-    g_timers.rebuilds = ws->impl->rebuilds;
+    EnergyTimers& T = ws->timers;
+    T.delaunay += std::chrono::duration<double>(t1 - t0).count();
+    T.updates = ws->impl->updates;
+    T.rebuilds = ws->impl->rebuilds;
+    T.integrate += std::chrono::duration<double>(t2 - t1).count();
+    ++T.evaluations;
   }
-  g_timers.integrate += std::chrono::duration<double>(t2 - t1).count();
-  ++g_timers.evaluations;
   return r;
 }
 

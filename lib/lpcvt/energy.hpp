@@ -61,11 +61,31 @@ struct EnergyResult {
   long pieces = 0;         ///< number of clipped-cell pieces integrated
 };
 
-/// Buffers reused between evaluations (per-cell gradient contributions, per-thread pieces).
+/// How the energy is evaluated (no effect on the value beyond rounding).
+struct EnergySettings {
+  bool closed_form = true;        ///< the closed form (above) where it applies; tests compare both paths
+  int min_parallel_sites = 2000;  ///< OpenMP from this many sites on (smaller problems lose more to
+                                  ///< thread start-up than they gain); tests set 0 for the parallel path
+};
+
+/// Wall seconds spent by one workspace in the two phases of the convenience lp_energy: the
+/// Delaunay graph and start sites, and the pieces + integration.
+struct EnergyTimers {
+  double delaunay = 0, integrate = 0;
+  long evaluations = 0;
+  long updates = 0, rebuilds = 0;  ///< Delaunay graphs updated by flips / rebuilt
+  EnergyTimers& operator+=(const EnergyTimers& o);
+};
+
+/// Buffers reused between evaluations (per-cell gradient contributions, per-thread pieces),
+/// the evaluation settings and the time spent.
 class EnergyWorkspace {
  public:
   EnergyWorkspace();
+  explicit EnergyWorkspace(const EnergySettings& s);
   ~EnergyWorkspace();
+  EnergySettings settings;
+  EnergyTimers timers;
   struct Impl;
   std::unique_ptr<Impl> impl;
 };
@@ -78,22 +98,6 @@ EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, doubl
 /// Convenience: builds the restricted Voronoi diagram of `sites` first.
 EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, double p,
                        bool gradient = true, EnergyWorkspace* ws = nullptr, double gamma = 0);
-
-/// Use the closed form (above) where it applies (default true; tests compare both paths).
-void set_closed_form(bool on);
-
-/// Wall seconds spent so far (process-wide, summed by the calling thread) in the two phases of
-/// the convenience lp_energy: the Delaunay graph and start sites, and the pieces + integration.
-struct EnergyTimers {
-  double delaunay = 0, integrate = 0;
-  long evaluations = 0;
-  long updates = 0, rebuilds = 0;  ///< of the last workspace: Delaunay graphs updated by flips / rebuilt
-};
-EnergyTimers energy_timers();
-
-/// OpenMP is used from this many sites on (default 2000; smaller problems lose more to thread
-/// start-up than they gain). Tests set 0 to exercise the parallel path.
-void set_min_parallel_sites(int n);
 
 /// Energy of one piece (tests): integral over the piece of |M (y - x_site)|_p^p.
 double piece_energy(const RvdPiece& piece, const Background& bg, const Vec2& x_site, double p);

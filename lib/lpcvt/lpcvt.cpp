@@ -63,6 +63,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
 
   auto minimise = [&](int cyc, bool polish) {
     last = minimize_energy(*lbg, sites, nfixed, opt.p, opt.lbfgs, &r.history, cyc, on_iter);
+    r.energy_timers += last.timers;
     CycleRecord c;
     c.cycle = cyc;
     c.polish = polish;

@@ -93,6 +93,7 @@ struct LpcvtResult {
   std::vector<CycleRecord> cycles;
   std::vector<LevelRecord> levels;  ///< coarsest first; one entry without multilevel
   int iterations = 0, evaluations = 0;
+  EnergyTimers energy_timers;      ///< summed over the minimisations (graph updates/rebuilds too)
   double energy = 0, grad_norm = 0;
   bool converged = false;          ///< outer loop converged and the last minimisation converged
   std::string stop;                ///< why it stopped, in words

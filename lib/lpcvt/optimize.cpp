@@ -49,7 +49,7 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
       P[i] = L * std::sqrt(std::abs(M.determinant())) * M.inverse();
     }
   }
-  EnergyWorkspace ews;
+  EnergyWorkspace ews(opt.energy);
   auto f = [&](const VecX& z, VecX& gz) -> double {
     for (int i = 0; i < nfree; ++i) work[nfixed + i] = x0[nfixed + i] + P[i] * Vec2(z[2 * i], z[2 * i + 1]);
     EnergyResult e = lp_energy(bg, work, p, true, &ews, opt.gamma);
@@ -198,6 +198,7 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
   for (int i = 0; i < nfree; ++i) sites[nfixed + i] = x0[nfixed + i] + P[i] * Vec2(z[2 * i], z[2 * i + 1]);
   res.iterations = iter;
   res.evaluations = evals;
+  res.timers = ews.timers;
   return res;
 }
 

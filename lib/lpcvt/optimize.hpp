@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "lpcvt/background.hpp"
+#include "lpcvt/energy.hpp"
 
 namespace quadapt::lpcvt {
 
@@ -33,6 +34,7 @@ struct LbfgsOptions {
   int memory = 7;            ///< L-BFGS correction pairs
   bool precondition = false; ///< variables scaled by the local frame (optimize.cpp)
   double gamma = 0;          ///< energy weight |det M|^gamma (energy.hpp); 0 = the thesis's energy
+  EnergySettings energy;     ///< how the energy is evaluated (energy.hpp)
 };
 
 /// One accepted L-BFGS iterate (iteration 0 = the starting point).
@@ -54,6 +56,7 @@ struct MinimizeResult {
   bool converged = false;
   int restarts = 0;  ///< L-BFGS restarts after line-search failures
   std::string stop;  ///< "gradient", "energy", "iteration cap", "line search: ...", "no free sites"
+  EnergyTimers timers;  ///< time in the energy evaluations of this call
 };
 
 /// Minimises E over sites[nfixed..] (sites[0..nfixed) stay fixed). Appends every accepted

@@ -134,7 +134,7 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
   LpcvtResult r = run_lpcvt(bg, opt, log);
   const TriangulationCheck chk = check_triangulation(r.mesh);
   if (!chk.ok()) throw NumericalError("lpcvt: invalid output triangulation: " + chk.summary());
-  const EnergyTimers et = energy_timers();
+  const EnergyTimers& et = r.energy_timers;
   rep["energy_seconds"] = {{"delaunay", et.delaunay}, {"integrate", et.integrate}, {"evaluations", et.evaluations},
                            {"updates", et.updates}, {"rebuilds", et.rebuilds}};
   const nlohmann::json figures = report_json(r);

@@ -197,9 +197,9 @@ TEST_CASE("closed-form integration (even p, constant metric) equals the quadratu
     int nfixed = 0;
     auto x = sites_for(bg, 40, 21 + kind, nfixed);
     for (double p : {2.0, 4.0, 6.0, 8.0}) {
-      set_closed_form(false);
-      EnergyResult a = lp_energy(bg, x, p, true);
-      set_closed_form(true);
+      EnergyWorkspace quadrature;
+      quadrature.settings.closed_form = false;
+      EnergyResult a = lp_energy(bg, x, p, true, &quadrature);
       EnergyWorkspace ws;
       EnergyResult b = lp_energy(bg, x, p, true, &ws);
       EnergyResult c = lp_energy(bg, x, p, true, &ws);  // reused buffers: the same numbers

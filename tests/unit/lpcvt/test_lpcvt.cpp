@@ -177,14 +177,13 @@ TEST_CASE("deterministic for a seed, and independent of the thread count") {
   LpcvtOptions o;
   o.max_cycles = 2;
   o.lbfgs.max_iterations = 60;
-  set_min_parallel_sites(0);
+  o.lbfgs.energy.min_parallel_sites = 0;
   int saved = omp_get_max_threads();
   omp_set_num_threads(1);
   LpcvtResult a = run_lpcvt(bg, o);
   omp_set_num_threads(2);
   LpcvtResult b = run_lpcvt(bg, o);
   omp_set_num_threads(saved);
-  set_min_parallel_sites(2000);
   REQUIRE(a.sites.size() == b.sites.size());
   for (size_t i = 0; i < a.sites.size(); ++i) CHECK(a.sites[i] == b.sites[i]);
   CHECK(a.energy == b.energy);
