@@ -87,51 +87,22 @@ int main(int argc, char** argv) {
              std::to_string(p + 1) + ", " + std::to_string(static_cast<long long>(mesh.num_cells()) * (p + 2) * (p + 2)) +
              " fine dofs");
 
-    DWRResult r = compute_dwr(mesh, cs, U, p, opt);
+    const DWRResult r = compute_dwr(mesh, cs, U, p, opt);
     auto& rep = tool.report();
-    for (const auto& [name, t] : r.timings) rep["timings"][name] = t;
+    rep.update(to_json(r), true);  // merge_objects: the phase timings stay
     tool.log("adjoint solved with " + r.solve.solver + " (" + std::to_string(r.solve.iterations) +
              " iterations); estimate " + std::to_string(r.estimate) + ", true error " +
              std::to_string(r.functional_error));
 
     {
       auto ph = tool.phase("write");
-      CellField dwr;
-      dwr.name = "dwr";
-      dwr.ncomp = 1;
-      dwr.values = r.eta;
-      mesh.set_field(std::move(dwr));
-      mesh.set_field(make_dg_field(r.psi, p + 1, mesh.num_cells(), "psi"));
+      add_dwr_fields(mesh, r);
       write_msh(mesh, out);
     }
-    auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
     rep["case"] = case_path;
     if (!cs.name.empty()) rep["case_name"] = cs.name;
     rep["functional_boundary"] = cs.functional_boundary;
     rep["cells"] = mesh.num_cells();
-    rep["p"] = r.p;
-    rep["p_fine"] = r.p_fine;
-    rep["dofs"] = r.dofs;
-    rep["fine_dofs"] = r.fine_dofs;
-    rep["functional"] = r.functional;
-    rep["functional_exact"] = r.functional_exact;
-    rep["functional_error"] = std::abs(r.functional_error);
-    rep["functional_error_signed"] = r.functional_error;
-    rep["functional_error_estimate"] = r.estimate;
-    rep["sum_eta"] = r.sum_eta;
-    rep["effectivity"] = num(r.effectivity);
-    rep["functional_corrected"] = r.corrected;
-    rep["functional_corrected_error"] = std::abs(r.functional_exact - r.corrected);
-    double emax = 0;
-    for (double e : r.eta) emax = std::max(emax, e);
-    rep["eta_max"] = emax;
-    rep["residual_norm"] = r.residual.norm();
-    rep["solver"] = r.solve.solver;
-    rep["solver_iterations"] = r.solve.iterations;
-    rep["solver_relative_residual"] = r.solve.relative_residual;
-    rep["solver_fallback"] = r.solve.fallback;
-    rep["solver_setup_s"] = r.solve.setup_seconds;
-    rep["solver_solve_s"] = r.solve.solve_seconds;
     rep["time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   });
 }

@@ -2,7 +2,6 @@
 // Delaunay triangulation (thesis ch. 4, Algorithms 1-3). See docs/lpcvt.md; the work is
 // lib/lpcvt/run.hpp.
 #include <cstring>
-#include <filesystem>
 #include <string>
 
 #include "cli/tool.hpp"
@@ -13,21 +12,16 @@
 int main(int argc, char** argv) {
   using namespace quadapt;
   using namespace quadapt::lpcvt;
-  Tool tool(
-      "lpcvt", "Triangles whose points minimise the L_p-CVT energy of a frame field",
-      "Reads the background mesh FRAME.msh with its per-cell frame 'Vinv' (M = V^-1, 9 components, M in the "
-      "upper-left 2x2), meshes the boundary curves by equidistribution in the metric (thesis eqs. 4.2-4.7), "
-      "seeds interior points, then repeats { L-BFGS on the L_p-CVT energy over the clipped Voronoi diagram "
-      "(eq. 4.1, gradient eqs. 4.8-4.11); split long / merge short Delaunay edges by the L_p line integral "
-      "(eq. 4.12) } until fewer than 2% of the edges change in two consecutive cycles, and writes the "
-      "constrained Delaunay triangulation with the boundary groups. Sizes: the frame file states its size "
-      "convention (quadapt's files: $FrameConvention quadapt, target cells 2h1 x 2h2; a file without it, as "
-      "PHiLiP's, is read as full-edge sizes); points are two target cell edges apart (M_eff = M/4 in the "
-      "quadapt convention), so the all-quad mesh made by 'recombine' has the frame's cells. --analytic "
-      "saddle runs the thesis's validation (eq. 6.1 on [-1.3,1.3]^2, 20 random start points; --sampled: "
-      "the metric sampled on a 16x16 grid) without FRAME. The report has points, requested_points, "
-      "iterations, energy, grad_norm, converged and the whole convergence history. An optimiser that stops "
-      "early still writes a valid mesh (\"converged\": false; with --strict exit code 1).");
+  Tool tool("lpcvt", "Triangles whose points minimise the L_p-CVT energy of a frame field",
+            "Reads FRAME.msh (per-cell 'Vinv', M = V^-1; its $FrameConvention says the size convention, none = "
+            "PHiLiP's full-edge sizes), meshes the boundary by equidistribution in the metric (thesis eqs. "
+            "4.2-4.7), seeds interior points, then repeats { L-BFGS on the L_p-CVT energy (eq. 4.1, gradient "
+            "eqs. 4.8-4.11); split long / merge short edges (eq. 4.12) } until fewer than 2% of the edges change "
+            "in two consecutive cycles, and writes the constrained Delaunay triangulation with the boundary "
+            "groups. Points are two target cell edges apart, so 'recombine' (pairs + split into 4) gives the "
+            "frame's cells. --analytic saddle: the thesis's validation (eq. 6.1 on [-1.3,1.3]^2). Report: points, "
+            "iterations, energy, convergence history; an optimiser that stops early still writes a valid mesh "
+            "(\"converged\": false; --strict: exit code 1). See docs/lpcvt.md.");
   bool analytic_mode = false;  // the defaults depend on the mode (LpcvtOptions::for_frame / for_analytic)
   for (int i = 1; i < argc; ++i) analytic_mode |= std::strncmp(argv[i], "--analytic", 10) == 0;
   LpcvtJob job;
@@ -44,50 +38,37 @@ int main(int argc, char** argv) {
   app.add_option("--lp-exponent", opt.p, "L_p exponent p of the energy (eq. 4.1) and of eq. 4.12")
       ->capture_default_str()->check(CLI::Range(2.0, 32.0));
   app.add_option("--scale", job.scale, "Metric scale: M_eff = scale * M, M in the quadapt convention (default 0.25; 1 for --analytic)");
-  app.add_option("--convention", convention,
-                 "Size convention of FRAME: auto (what the file states; no statement = philip), quadapt (d = |det M|/4) "
-                 "or philip (full-edge sizes, d = |det M|, M_quadapt = 2 M_philip)")
+  app.add_option("--convention", convention, "Size convention of FRAME: auto (the file's), quadapt or philip")
       ->capture_default_str()->check(CLI::IsMember({"auto", "quadapt", "philip"}));
   app.add_option("--analytic", analytic, "Validation metric instead of FRAME: 'saddle' (eq. 6.1)")->check(CLI::IsMember({"saddle"}));
   app.add_flag("--sampled", sampled, "With --analytic: sample the metric at the centres of a --grid grid");
   app.add_option("--grid", grid, "With --analytic: background grid size")->capture_default_str()->check(CLI::Range(1, 4096));
   app.add_option("--initial", initial, "Interior points to start from (default: the requested count for frames, 20 for --analytic)");
-  app.add_option("--cells", cells_kind,
-                 "Voronoi cells of the energy: metric (frames' default: distances in each background cell's metric, so "
-                 "the points form a square lattice in the metric at any frame orientation; docs/lpcvt.md) or euclidean "
-                 "(the thesis's; --analytic's default)")
+  app.add_option("--cells", cells_kind, "Voronoi cells of the energy: metric (frames' default: distances in each "
+                 "background cell's metric; docs/lpcvt.md) or euclidean (the thesis's; --analytic's default)")
       ->check(CLI::IsMember({"metric", "euclidean"}));
-  app.add_option("--init", init,
-                 "Initial points: lattice (frames' default: the frame-aligned lattice grown from one seed), multilevel "
-                 "(coarse levels from density seeds, each finer level from the children of the coarser sites), density "
-                 "(random, by the metric's density) or uniform (random; --analytic's)")
+  app.add_option("--init", init, "Initial points: lattice (frames' default: frame-aligned, grown from one seed), "
+                 "multilevel (coarse to fine), density (random by the metric) or uniform (random; --analytic's)")
       ->check(CLI::IsMember({"lattice", "multilevel", "density", "uniform"}));
   app.add_option("--coarse-points", opt.coarse_points, "Multilevel: interior points of the coarsest level, at least")
       ->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--complexity", job.complexity,
-                 "Target DOFs: rescale the frame uniformly so that the final all-quad mesh has complexity/(degree+1)^2 cells")
+  app.add_option("--complexity", job.complexity, "Target DOFs: the frame rescaled to complexity/(degree+1)^2 cells")
       ->check(CLI::PositiveNumber);
   app.add_option("--degree", job.degree, "DG degree P for --complexity (cells = complexity/(P+1)^2)")->check(CLI::Range(0, 20));
   app.add_option("--smooth", job.smooth, "Log-Euclidean smoothing of the metric M^T M across background cells: passes (0 = none)")
       ->capture_default_str()->check(CLI::Range(0, 1000));
-  app.add_option("--gradation", job.gradation,
-                 "Anisotropic size gradation: sizes grow at most by this factor per unit metric length between "
-                 "neighbouring background cells (metric intersection; 0 = none); the point count is kept")
-      ->capture_default_str();
-  app.add_option("--cells-per-triangle", job.cells_per_triangle,
-                 "Final all-quad cells per lpcvt triangle that recombine gives (2 in theory; measured 1.92-2.01, "
-                 "docs/bench-lpcvt.md): the point count is sized by 2/R")
+  app.add_option("--gradation", job.gradation, "Anisotropic size gradation: growth per unit metric length between "
+                 "neighbouring background cells (0 = none); the point count is kept")->capture_default_str();
+  app.add_option("--cells-per-triangle", job.cells_per_triangle, "Final all-quad cells per triangle that recombine "
+                 "gives (2 in theory; 1.92-2.01 measured): the point count is sized by 2/R")
       ->capture_default_str()->check(CLI::Range(1.0, 3.0));
-  app.add_option("--write-frame", frame_out,
-                 "Also write the frame actually meshed (after --smooth/--gradation/--complexity), quadapt convention");
-  app.add_flag("--no-exact-count", no_exact,
-               "Do not set the point count to the requested one (multilevel levels, before the final minimisation)");
+  app.add_option("--write-frame", frame_out, "Also write the frame actually meshed (after filters and --complexity)");
+  app.add_flag("--no-exact-count", no_exact, "Do not set the point count to the requested one (adjust_count)");
   app.add_option("--max-cycles", opt.max_cycles, "Split/merge cycles at most")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--max-iterations", opt.lbfgs.max_iterations, "L-BFGS iterations per minimisation at most (500 with --analytic)")
       ->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--weight", opt.lbfgs.gamma,
-                 "Energy weight |det M|^gamma (energy.hpp): 1 gives one point per unit metric area in graded frames; 0 "
-                 "is the thesis's energy (--analytic's default)")->capture_default_str();
+  app.add_option("--weight", opt.lbfgs.gamma, "Energy weight |det M|^gamma: 1 = one point per unit metric area in "
+                 "graded frames; 0 = the thesis's energy (--analytic's default)")->capture_default_str();
   app.add_flag("--precondition", opt.lbfgs.precondition, "Scale every site's variables by its local frame");
   app.add_option("--delta", opt.lbfgs.delta, "Stop when the energy falls by less than this (relative) over --past iterations (1e-10 with --analytic)")
       ->capture_default_str();
@@ -105,17 +86,8 @@ int main(int argc, char** argv) {
     if (in.empty() == analytic.empty()) throw InputError("", "give either FRAME.msh or --analytic saddle");
     if (!in.empty()) tool.input(in);
     tool.output(out);
-    namespace fs = std::filesystem;
-    auto same = [](const std::string& a, const std::string& b) { return fs::path(a).lexically_normal() == fs::path(b).lexically_normal(); };
-    if (!voronoi_out.empty()) {
-      tool.output(voronoi_out);
-      if (same(voronoi_out, tool.report_path()) || same(voronoi_out, out))
-        throw InputError("", "--voronoi " + voronoi_out + " would overwrite the mesh or the report");
-    }
-    if (!frame_out.empty()) {
-      tool.output(frame_out);
-      if (same(frame_out, out)) throw InputError("", "--write-frame " + frame_out + " would overwrite the mesh");
-    }
+    if (!voronoi_out.empty()) tool.output(voronoi_out);
+    if (!frame_out.empty()) tool.output(frame_out);
     opt.exact_count = !no_exact;
     opt.set_init(init, analytic_mode);
     if (initial >= 0) opt.initial_points = initial;

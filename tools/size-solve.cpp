@@ -93,28 +93,9 @@ int main(int argc, char** argv) {
     }
     Mesh frame = make_frame_mesh(shape, r);
     auto& rep = tool.report();
-    rep["p"] = r.p;
+    rep.update(to_json(r));
     rep["cells"] = shape.num_cells();
     rep["current_dofs"] = dofs;
-    rep["target_complexity"] = r.target_complexity;
-    rep["continuous_complexity"] = r.continuous_complexity;
-    rep["expected_cells"] = r.continuous_complexity / (n * n);
-    if (dwr.empty()) rep["lambda"] = r.lambda;
-    else {
-      rep["eta_ref"] = r.eta_ref;
-      rep["alpha_min"] = *std::min_element(r.alpha.begin(), r.alpha.end());
-      rep["alpha_max"] = *std::max_element(r.alpha.begin(), r.alpha.end());
-    }
-    rep["h_min"] = *std::min_element(r.h.begin(), r.h.end());
-    rep["h_max"] = *std::max_element(r.h.begin(), r.h.end());
-    rep["rho_max"] = *std::max_element(r.rho.begin(), r.rho.end());
-    rep["hmin_bound"] = r.hmin;
-    rep["hmax_bound"] = r.hmax;
-    rep["cells_at_hmin"] = r.cells_at_hmin;
-    rep["cells_at_hmax"] = r.cells_at_hmax;
-    rep["cells_anisotropy_capped"] = r.cells_anisotropy_capped;
-    rep["cells_graded"] = r.cells_graded;
-    rep["bisection_iterations"] = r.iterations;
     tool.log("target " + std::to_string(r.target_complexity) + " DOFs, continuous complexity " +
              std::to_string(r.continuous_complexity) + " (~" + std::to_string(std::lround(r.continuous_complexity / (n * n))) +
              " cells of p = " + std::to_string(r.p) + ")");

@@ -166,4 +166,41 @@ DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U
   return r;
 }
 
+nlohmann::json to_json(const DWRResult& r) {
+  auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+  nlohmann::json j;
+  j["p"] = r.p;
+  j["p_fine"] = r.p_fine;
+  j["dofs"] = r.dofs;
+  j["fine_dofs"] = r.fine_dofs;
+  j["functional"] = r.functional;
+  j["functional_exact"] = r.functional_exact;
+  j["functional_error"] = std::abs(r.functional_error);
+  j["functional_error_signed"] = r.functional_error;
+  j["functional_error_estimate"] = r.estimate;
+  j["sum_eta"] = r.sum_eta;
+  j["effectivity"] = num(r.effectivity);
+  j["functional_corrected"] = r.corrected;
+  j["functional_corrected_error"] = std::abs(r.functional_exact - r.corrected);
+  j["eta_max"] = r.eta.empty() ? 0.0 : *std::max_element(r.eta.begin(), r.eta.end());
+  j["residual_norm"] = r.residual.norm();
+  j["solver"] = r.solve.solver;
+  j["solver_iterations"] = r.solve.iterations;
+  j["solver_relative_residual"] = r.solve.relative_residual;
+  j["solver_fallback"] = r.solve.fallback;
+  j["solver_setup_s"] = r.solve.setup_seconds;
+  j["solver_solve_s"] = r.solve.solve_seconds;
+  for (const auto& [name, t] : r.timings) j["timings"][name] = t;
+  return j;
+}
+
+void add_dwr_fields(Mesh& mesh, const DWRResult& r) {
+  CellField dwr;
+  dwr.name = "dwr";
+  dwr.ncomp = 1;
+  dwr.values = r.eta;
+  mesh.set_field(std::move(dwr));
+  mesh.set_field(make_dg_field(r.psi, r.p_fine, mesh.num_cells(), "psi"));
+}
+
 }  // namespace quadapt

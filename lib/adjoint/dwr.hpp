@@ -22,6 +22,7 @@
 // psi holds the nodal (GLL) values of the discrete adjoint function z_h = sum_a psi_a phi_a,
 // which satisfies a_h(v, z_h) = J'(u_h^H)[v] for every fine v: a viewable degree-(p+1) field.
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -84,6 +85,13 @@ struct DWRResult {
   LinearSolveInfo solve;         ///< adjoint linear solve (method, iterations, residual)
   std::vector<std::pair<std::string, double>> timings;  ///< wall seconds per phase, in order
 };
+
+/// The report figures of r (docs/adjoint.md): p, p_fine, dofs, fine_dofs, functional*,
+/// sum_eta, effectivity (null when not finite), eta_max, residual_norm, solver_*.
+nlohmann::json to_json(const DWRResult& r);
+
+/// `mesh` with the cell field "dwr" (eta) and the degree-(p+1) DG field "psi" of r added.
+void add_dwr_fields(Mesh& mesh, const DWRResult& r);
 
 /// Computes the DWR estimate for the degree-p DG vector U (#cells (p+1)^2) on `mesh` for case
 /// `cs`. Throws InputError when the case has no functional or names a boundary the mesh lacks,

@@ -38,6 +38,11 @@ void Tool::input(const std::string& path) {
 
 void Tool::output(const std::string& path) {
   check_not_an_input(path, inputs_);
+  const auto key = [](const std::string& p) { return std::filesystem::absolute(p).lexically_normal(); };
+  for (const std::string& o : outputs_)
+    if (key(o) == key(path)) throw InputError(path, "given for two outputs; choose another path");
+  if (!report_path_.empty() && key(report_path_) == key(path))
+    throw InputError(path, "output would overwrite the report " + report_path_ + "; choose another path");
   outputs_.push_back(path);
   report_["outputs"].push_back(path);
   if (report_path_.empty()) {

@@ -331,4 +331,32 @@ void check_same_cells(const Mesh& shape, const Mesh& dwr, const std::string& dwr
                                        " has a different centroid than in the SHAPE mesh");
 }
 
+nlohmann::json to_json(const SizeResult& r) {
+  auto lo = [](const std::vector<double>& v) { return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end()); };
+  auto hi = [](const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); };
+  nlohmann::json j;
+  j["p"] = r.p;
+  j["target_complexity"] = r.target_complexity;
+  j["continuous_complexity"] = r.continuous_complexity;
+  j["expected_cells"] = cells_for_complexity(r.continuous_complexity, r.p);
+  if (r.alpha.empty()) {
+    j["lambda"] = r.lambda;
+  } else {
+    j["eta_ref"] = r.eta_ref;
+    j["alpha_min"] = lo(r.alpha);
+    j["alpha_max"] = hi(r.alpha);
+  }
+  j["h_min"] = lo(r.h);
+  j["h_max"] = hi(r.h);
+  j["rho_max"] = hi(r.rho);
+  j["hmin_bound"] = r.hmin;
+  j["hmax_bound"] = r.hmax;
+  j["cells_at_hmin"] = r.cells_at_hmin;
+  j["cells_at_hmax"] = r.cells_at_hmax;
+  j["cells_anisotropy_capped"] = r.cells_anisotropy_capped;
+  j["cells_graded"] = r.cells_graded;
+  j["bisection_iterations"] = r.iterations;
+  return j;
+}
+
 }  // namespace quadapt

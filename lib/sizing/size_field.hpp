@@ -27,6 +27,7 @@
 //  - optional gradation: h_k <= g · h_j for face neighbours j (g > 1; exact fixed point);
 //  - B = 0 (no (p+1)-th derivative) gives the maximum size; B = 0 everywhere gives a uniform
 //    density. Non-finite or negative inputs are InputErrors.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -93,5 +94,10 @@ double goal_alpha(double eta_k, double eta_ref, double eta_min, double eta_max, 
 /// Throws InputError("dwr_source: ...") unless `dwr` has the same cells as `shape` (count and
 /// centroids within 1e-8 of the domain size).
 void check_same_cells(const Mesh& shape, const Mesh& dwr, const std::string& dwr_source);
+
+/// The report figures of r (docs/size-solve.md): p, target and continuous complexity,
+/// expected_cells, lambda (feature) or eta_ref and the alpha range (goal), the h range and
+/// bounds, the capped/graded cell counts, bisection_iterations.
+nlohmann::json to_json(const SizeResult& r);
 
 }  // namespace quadapt
