@@ -37,7 +37,7 @@
 
 #include "case/case.hpp"
 #include "case/expression.hpp"
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 #include "estimate/directional.hpp"
 #include "estimate/error_model.hpp"
 #include "estimate/estimate_frame.hpp"

@@ -6,7 +6,7 @@
 // equivalent well-posed form  -div(D grad u) + c . grad u = f  with  f = -S.
 //
 // Space: on every cell K the tensor-product Lagrange polynomials of degree p on Gauss-Lobatto
-// points (dg/basis.hpp), mapped by the bilinear map of the straight-sided quad. Global dof
+// points (fem/basis.hpp), mapped by the bilinear map of the straight-sided quad. Global dof
 // numbering: dof = K * (p+1)^2 + i + (p+1) j, i.e. the coefficients are the nodal values at the
 // GLL points (xi_i, eta_j) of cell K — exactly the layout of the CellNodeField "u".
 //
@@ -40,7 +40,7 @@
 #include <vector>
 
 #include "case/case.hpp"
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 #include "dg/block_matrix.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/topology.hpp"

@@ -3,7 +3,7 @@
 #include <Eigen/UmfPackSupport>
 
 #include "core/error.hpp"
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 #include "dg/block_dispatch.hpp"
 
 namespace quadapt {

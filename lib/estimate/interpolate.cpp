@@ -1,7 +1,7 @@
 #include "estimate/interpolate.hpp"
 
 #include "core/error.hpp"
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 
 namespace quadapt {
 

@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 #include "mesh/mesh.hpp"
 
 namespace quadapt {

@@ -3,7 +3,7 @@
 #include <cctype>
 #include <stdexcept>
 
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 
 namespace quadapt {
 

@@ -6,7 +6,7 @@
 
 #include "core/error.hpp"
 #include "frame/frame.hpp"
-#include "lpcvt/quadrature.hpp"
+#include "fem/quadrature.hpp"
 #include "mesh/topology.hpp"
 
 namespace quadapt::lpcvt {

@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "lpcvt/delaunay.hpp"
-#include "lpcvt/quadrature.hpp"
+#include "fem/quadrature.hpp"
 
 namespace quadapt::lpcvt {
 

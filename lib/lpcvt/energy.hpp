@@ -6,7 +6,7 @@
 // with Omega_i the Euclidean Voronoi cell of site x_i, M = M_eff of the background and
 // |F|_p^p = |F_0|^p + |F_1|^p. The integral is split into the pieces Omega_i ∩ Q of the
 // restricted Voronoi diagram (lpcvt/rvd.hpp); each convex piece is fanned from its first vertex
-// into facets (c0, c_k, c_k+1) and integrated with a triangle rule (lpcvt/quadrature.hpp;
+// into facets (c0, c_k, c_k+1) and integrated with a triangle rule (fem/quadrature.hpp;
 // exact for p <= 6 even with a constant metric), eq. 4.8.
 //
 // Gradient, eq. 4.9: dE/dx_s = sum over facets of the direct term (the integrand depends on

@@ -237,7 +237,7 @@ long metric_flip_triangles(Mesh& m, const Background& bg) {
   return g.flips;
 }
 
-nlohmann::json report_json(const LpcvtResult& r) {
+nlohmann::json to_json(const LpcvtResult& r) {
   using nlohmann::json;
   json j;
   j["points"] = r.sites.size();

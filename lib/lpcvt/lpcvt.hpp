@@ -112,6 +112,6 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
 /// Returns the number of flips.
 long metric_flip_triangles(Mesh& m, const Background& bg);
 
-nlohmann::json report_json(const LpcvtResult& r);
+nlohmann::json to_json(const LpcvtResult& r);
 
 }  // namespace quadapt::lpcvt

@@ -137,7 +137,7 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
   const EnergyTimers& et = r.energy_timers;
   rep["energy_seconds"] = {{"delaunay", et.delaunay}, {"integrate", et.integrate}, {"evaluations", et.evaluations},
                            {"updates", et.updates}, {"rebuilds", et.rebuilds}};
-  const nlohmann::json figures = report_json(r);
+  const nlohmann::json figures = to_json(r);
   for (auto& [k, v] : figures.items()) rep[k] = v;
   rep["area"] = chk.area;
   // recombine pairs the triangles and splits every quad into four: about 2 cells per triangle

@@ -48,7 +48,7 @@ Background saddle_background(int grid, bool sampled, const LpcvtJob& job, nlohma
                              const std::function<void(const std::string&)>& log = {});
 
 /// run_lpcvt, the check of the output triangulation (NumericalError when invalid), and the
-/// report figures (report_json, areas, angles, Voronoi alignment, expected_cells).
+/// report figures (to_json, areas, angles, Voronoi alignment, expected_cells).
 LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann::json& report,
                             const std::function<void(const std::string&)>& log = {});
 

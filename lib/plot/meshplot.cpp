@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 #include "plot/svg.hpp"
 
 namespace quadapt::plot {

@@ -8,7 +8,7 @@
 //     - the DG solution, a CellNodeField of degree p on quads (index i + (p+1) j at the GLL
 //       points, mesh/fields.hpp): each quad is sub-sampled into n x n sub-quads (n = 2p by
 //       default, at least 2) coloured by the DG polynomial at the sub-quad centre
-//       (dg/basis.hpp eval_tensor), so the high-order field shows inside each cell;
+//       (fem/basis.hpp eval_tensor), so the high-order field shows inside each cell;
 //     - a CellNodeField of vertex values (degree -1): the mean per cell;
 //     optionally as log10 |value| (the DWR, thesis Fig. 6.21), with a colour bar;
 //  2. the mesh edges (and the boundary edges thicker);

@@ -1,9 +1,9 @@
-// The Gmsh interpolation matrices reproduce the tensor GLL Lagrange basis of lib/dg/basis.hpp.
+// The Gmsh interpolation matrices reproduce the tensor GLL Lagrange basis of lib/fem/basis.hpp.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 #include "io/gll_scheme.hpp"
 
 using namespace quadapt;

@@ -11,7 +11,7 @@
 #include <random>
 
 #include "core/error.hpp"
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 #include "gmsh/session.hpp"
 #include "io/msh.hpp"
 #include "mesh_compare.hpp"

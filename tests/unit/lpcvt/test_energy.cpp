@@ -9,10 +9,13 @@
 #include "helpers.hpp"
 #include "lpcvt/boundary.hpp"
 #include "lpcvt/energy.hpp"
-#include "lpcvt/quadrature.hpp"
+#include "fem/quadrature.hpp"
 #include "lpcvt/rvd.hpp"
 
 using namespace lpcvt_test;
+using quadapt::TriangleRule;
+using quadapt::collapsed_gauss;
+using quadapt::dunavant6;
 
 namespace {
 

@@ -165,7 +165,7 @@ TEST_CASE("an optimiser stopped by the iteration cap still gives a valid mesh an
   CHECK(r.cycles.front().stop == "iteration cap");
   CHECK_FALSE(r.cycles.front().converged);
   check_valid(r, bg);
-  auto j = report_json(r);
+  auto j = to_json(r);
   CHECK(j["converged"] == false);
   CHECK(j["history"]["energy"].size() == r.history.size());
 }

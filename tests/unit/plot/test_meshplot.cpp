@@ -5,7 +5,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 #include "mesh/mesh.hpp"
 #include "plot/colormap.hpp"
 #include "plot/meshplot.hpp"

@@ -1,4 +1,4 @@
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 
 #include <cmath>
 #include <stdexcept>

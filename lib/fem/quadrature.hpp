@@ -1,11 +1,11 @@
 #pragma once
-// Quadrature rules on triangles for the L_p-CVT energy (thesis eq. 4.8, "quadrature rules on
+// Quadrature rules on triangles (used by the L_p-CVT energy and metric areas) (thesis eq. 4.8, "quadrature rules on
 // the reference triangle f'"). A rule is a list of barycentric points and weights summing to 1,
 // so  integral over T of f  ~=  area(T) * sum_q w_q f(sum_a bary_q[a] * T_a).
 #include <array>
 #include <vector>
 
-namespace quadapt::lpcvt {
+namespace quadapt {
 
 struct TriangleRule {
   std::vector<std::array<double, 3>> bary;  ///< barycentric coordinates of the points
@@ -26,4 +26,4 @@ TriangleRule collapsed_gauss(int degree);
 /// with a constant metric), otherwise collapsed_gauss(ceil(p)).
 const TriangleRule& rule_for_exponent(double p);
 
-}  // namespace quadapt::lpcvt
+}  // namespace quadapt

@@ -1,12 +1,12 @@
-#include "lpcvt/quadrature.hpp"
+#include "fem/quadrature.hpp"
 
 #include <cmath>
 #include <map>
 #include <mutex>
 
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 
-namespace quadapt::lpcvt {
+namespace quadapt {
 
 const TriangleRule& dunavant6() {
   static const TriangleRule rule = [] {
@@ -68,4 +68,4 @@ const TriangleRule& rule_for_exponent(double p) {
   return it->second;
 }
 
-}  // namespace quadapt::lpcvt
+}  // namespace quadapt

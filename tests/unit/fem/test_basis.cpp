@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "dg/basis.hpp"
+#include "fem/basis.hpp"
 
 using namespace quadapt;
 
