@@ -33,6 +33,24 @@ GmshSession::~GmshSession() {
   }
 }
 
+GmshOptionGuard::GmshOptionGuard(std::vector<std::pair<std::string, double>> options) {
+  for (auto& [name, value] : options) {
+    double old = 0;
+    gmsh::option::getNumber(name, old);
+    saved_.emplace_back(name, old);
+    gmsh::option::setNumber(name, value);
+  }
+}
+
+GmshOptionGuard::~GmshOptionGuard() {
+  for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
+    try {
+      gmsh::option::setNumber(it->first, it->second);
+    } catch (...) {
+    }
+  }
+}
+
 void gmsh_call(const std::string& what, const std::function<void()>& body) {
   if (g_sessions == 0) throw Error("gmsh_call(" + what + ") without a GmshSession");
   const bool outer = g_call_depth == 0;

@@ -1,7 +1,8 @@
 #pragma once
 // The one adapter around the Gmsh SDK (gmsh.h, API 4.8): initialisation by RAII and a call
 // wrapper that turns Gmsh failures into quadapt::ExternalError. Every use of the SDK in
-// quadapt goes through these two (see ../shared/LIBRARY-FACTS.md for the SDK's quirks).
+// quadapt goes through lib/gmsh (these and gmsh/recombine.hpp); the SDK headers are private to
+// the library.
 //
 //   GmshSession gmsh;                                   // initialise (nested sessions share it)
 //   gmsh_call("open " + path, [&] { gmsh::open(path); });
@@ -9,6 +10,8 @@
 // Not thread-safe: Gmsh has one global state; use it from one thread.
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace quadapt {
 
@@ -23,6 +26,19 @@ class GmshSession {
   ~GmshSession();
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
+};
+
+/// Sets Gmsh's global numeric options while alive and restores the values it found (Gmsh's
+/// options are process-wide: a caller's settings survive our calls). Requires a live session.
+class GmshOptionGuard {
+ public:
+  explicit GmshOptionGuard(std::vector<std::pair<std::string, double>> options);
+  ~GmshOptionGuard();
+  GmshOptionGuard(const GmshOptionGuard&) = delete;
+  GmshOptionGuard& operator=(const GmshOptionGuard&) = delete;
+
+ private:
+  std::vector<std::pair<std::string, double>> saved_;
 };
 
 /// Runs `body` (calls of gmsh:: functions) and reports failure as

@@ -1,7 +1,5 @@
 #include "quad/blossom.hpp"
 
-#include <gmsh.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,7 +10,7 @@
 #include <unordered_map>
 
 #include "core/error.hpp"
-#include "gmsh/session.hpp"
+#include "gmsh/recombine.hpp"
 #include "quad/mesh_utils.hpp"
 
 namespace quadapt {
@@ -26,120 +24,21 @@ struct PointKey {
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// Gmsh's answer: node coordinates and cells (node indices into `nodes`).
-struct GmshAnswer {
-  std::vector<Vec2> nodes;
-  std::vector<Cell> cells;
-};
-
-GmshAnswer run_gmsh(const Mesh& tri, const std::vector<std::vector<int>>& loops, const std::vector<char>& on_boundary,
-                    const BlossomOptions& opt, bool cleanup) {
+GmshRecombined run_gmsh(const Mesh& tri, const std::vector<std::vector<int>>& loops, const std::vector<char>& on_boundary,
+                        const BlossomOptions& opt, bool cleanup) {
   // Order loops: the one of largest positive area is the outer loop.
   std::vector<int> order(loops.size());
   for (size_t i = 0; i < loops.size(); ++i) order[i] = static_cast<int>(i);
   std::vector<double> la(loops.size());
   for (size_t i = 0; i < loops.size(); ++i) la[i] = polygon_area(tri, loops[i]);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return la[a] > la[b]; });
-
-  std::vector<std::size_t> node_tags;
-  std::vector<double> coords, param;
-  std::vector<int> etypes;
-  std::vector<std::vector<std::size_t>> etags, enodes;
-  GmshSession session;
-  gmsh_call("Blossom-Quad recombination", [&] {
-    gmsh::model::add("quadapt-recombine");
-    // Options are global to Gmsh: set ours, restore the caller's at the end (nested sessions).
-    const std::vector<std::pair<std::string, double>> ours = {
-        {"Mesh.RecombinationAlgorithm", opt.algorithm},
-        {"Mesh.RecombineOptimizeTopology", cleanup ? opt.optimize_topology : 0},
-        {"Mesh.Smoothing", cleanup ? opt.smoothing : 0},
-        {"Mesh.RecombineAll", 1}};
-    std::vector<double> saved(ours.size());
-    for (size_t k = 0; k < ours.size(); ++k) {
-      gmsh::option::getNumber(ours[k].first, saved[k]);
-      gmsh::option::setNumber(ours[k].first, ours[k].second);
-    }
-
-    // Geometry: geo points = boundary nodes (tag = node + 1), geo lines = boundary edges.
-    for (size_t v = 0; v < tri.nodes.size(); ++v)
-      if (on_boundary[v]) gmsh::model::geo::addPoint(tri.nodes[v].x(), tri.nodes[v].y(), 0, 0, int(v) + 1);
-    int line_tag = 0;
-    std::vector<int> loop_tags;
-    std::vector<std::array<int, 2>> line_nodes;  // per line tag - 1
-    for (int li : order) {
-      const auto& l = loops[li];
-      std::vector<int> lines;
-      for (size_t i = 0; i < l.size(); ++i) {
-        int a = l[i], b = l[(i + 1) % l.size()];
-        ++line_tag;
-        gmsh::model::geo::addLine(a + 1, b + 1, line_tag);
-        line_nodes.push_back({a, b});
-        lines.push_back(line_tag);
-      }
-      loop_tags.push_back(gmsh::model::geo::addCurveLoop(lines));
-    }
-    const int surf = gmsh::model::geo::addPlaneSurface(loop_tags);
-    gmsh::model::geo::synchronize();
-
-    // Mesh: point nodes first, then line elements, then the surface's nodes and triangles.
-    for (size_t v = 0; v < tri.nodes.size(); ++v)
-      if (on_boundary[v])
-        gmsh::model::mesh::addNodes(0, int(v) + 1, {v + 1}, {tri.nodes[v].x(), tri.nodes[v].y(), 0.0});
-    for (int t = 1; t <= line_tag; ++t) {
-      const auto& ln = line_nodes[t - 1];
-      gmsh::model::mesh::addElementsByType(t, 1, {}, {std::size_t(ln[0]) + 1, std::size_t(ln[1]) + 1});
-    }
-    std::vector<std::size_t> inner_tags;
-    std::vector<double> inner_xyz, inner_uv;
-    for (size_t v = 0; v < tri.nodes.size(); ++v)
-      if (!on_boundary[v]) {
-        inner_tags.push_back(v + 1);
-        inner_xyz.insert(inner_xyz.end(), {tri.nodes[v].x(), tri.nodes[v].y(), 0.0});
-      }
-    if (!inner_tags.empty()) {
-      gmsh::model::getParametrization(2, surf, inner_xyz, inner_uv);
-      if (inner_uv.size() != 2 * inner_tags.size()) inner_uv.clear();
-      gmsh::model::mesh::addNodes(2, surf, inner_tags, inner_xyz, inner_uv);
-    }
-    std::vector<std::size_t> tri_nodes;
-    tri_nodes.reserve(3 * tri.cells.size());
-    for (const auto& c : tri.cells)
-      for (int i = 0; i < 3; ++i) tri_nodes.push_back(std::size_t(c.v[i]) + 1);
-    gmsh::model::mesh::addElementsByType(surf, 2, {}, tri_nodes);
-
-    gmsh::model::mesh::recombine();
-
-    gmsh::model::mesh::getNodes(node_tags, coords, param, -1, -1, false, false);
-    gmsh::model::mesh::getElements(etypes, etags, enodes, 2, surf);
-    gmsh::model::remove();
-    for (size_t k = 0; k < ours.size(); ++k) gmsh::option::setNumber(ours[k].first, saved[k]);
-  });
-
-  GmshAnswer ans;
-  std::unordered_map<std::size_t, int> tag_to_pos;
-  for (size_t i = 0; i < node_tags.size(); ++i) tag_to_pos[node_tags[i]] = int(i);
-  std::unordered_map<std::size_t, int> tag_to_new;
-  auto node_of = [&](std::size_t tag) {
-    auto it = tag_to_new.find(tag);
-    if (it != tag_to_new.end()) return it->second;
-    auto p = tag_to_pos.find(tag);
-    if (p == tag_to_pos.end()) throw ExternalError("Gmsh recombination returned an element with an unknown node");
-    int idx = int(ans.nodes.size());
-    ans.nodes.emplace_back(coords[3 * p->second], coords[3 * p->second + 1]);
-    tag_to_new[tag] = idx;
-    return idx;
-  };
-  for (size_t k = 0; k < etypes.size(); ++k) {
-    int nv = etypes[k] == 2 ? 3 : etypes[k] == 3 ? 4 : 0;
-    if (nv == 0) throw ExternalError("Gmsh recombination returned an element of type " + std::to_string(etypes[k]));
-    for (size_t e = 0; e < etags[k].size(); ++e) {
-      Cell c;
-      c.nv = nv;
-      for (int i = 0; i < nv; ++i) c.v[i] = node_of(enodes[k][nv * e + i]);
-      ans.cells.push_back(c);
-    }
-  }
-  return ans;
+  std::vector<std::vector<int>> ordered;
+  for (int li : order) ordered.push_back(loops[li]);
+  GmshRecombineOptions g;
+  g.algorithm = opt.algorithm;
+  g.optimize_topology = cleanup ? opt.optimize_topology : 0;
+  g.smoothing = cleanup ? opt.smoothing : 0;
+  return gmsh_recombine(tri, ordered, on_boundary, g);
 }
 
 // Input node of each answer node with exactly the same coordinates, or -1.
@@ -156,7 +55,7 @@ std::vector<int> match_nodes(const Mesh& tri, const std::vector<Vec2>& nodes, co
 }
 
 // Pairing mode: Gmsh's quads as pairs of input triangles.
-Mesh pairing(const Mesh& tri, const GmshAnswer& ans, const BlossomOptions& opt, BlossomStats& st) {
+Mesh pairing(const Mesh& tri, const GmshRecombined& ans, const BlossomOptions& opt, BlossomStats& st) {
   const std::vector<int> to_input = match_nodes(tri, ans.nodes, nullptr);
   auto key3 = [](int a, int b, int c) {
     std::array<int, 3> s{{a, b, c}};
@@ -288,7 +187,7 @@ Mesh pairing(const Mesh& tri, const GmshAnswer& ans, const BlossomOptions& opt, 
 }
 
 // Clean-up mode: Gmsh's mesh as it is, checked. Throws ExternalError when a check fails.
-Mesh take_cleanup(const Mesh& tri, const GmshAnswer& ans, const std::vector<char>& on_boundary,
+Mesh take_cleanup(const Mesh& tri, const GmshRecombined& ans, const std::vector<char>& on_boundary,
                   const std::vector<std::vector<int>>& loops, BlossomStats& st) {
   Mesh out;
   out.nodes = ans.nodes;
@@ -354,7 +253,7 @@ Mesh blossom_recombine(const Mesh& tri, const BlossomOptions& opt, BlossomStats*
   bool done = false;
   if (opt.gmsh_cleanup) {
     try {
-      GmshAnswer ans = run_gmsh(tri, loops, on_boundary, opt, true);
+      GmshRecombined ans = run_gmsh(tri, loops, on_boundary, opt, true);
       out = take_cleanup(tri, ans, on_boundary, loops, st);
       done = true;
     } catch (const ExternalError& e) {
@@ -365,7 +264,7 @@ Mesh blossom_recombine(const Mesh& tri, const BlossomOptions& opt, BlossomStats*
     }
   }
   if (!done) {
-    GmshAnswer ans = run_gmsh(tri, loops, on_boundary, opt, false);
+    GmshRecombined ans = run_gmsh(tri, loops, on_boundary, opt, false);
     out = pairing(tri, ans, opt, st);
   }
   st.quads = out.num_quads();
