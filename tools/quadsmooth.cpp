@@ -7,7 +7,7 @@
 #include "cli/tool.hpp"
 #include "io/msh.hpp"
 #include "mesh/validate.hpp"
-#include "quad/quality.hpp"
+#include "quad/quality_summary.hpp"
 #include "quad/report.hpp"
 #include "quad/smooth.hpp"
 #include "frame/frame.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // The one adapter around the Gmsh SDK (gmsh.h, API 4.8): initialisation by RAII and a call
 // wrapper that turns Gmsh failures into quadapt::ExternalError. Every use of the SDK in
-// quadapt goes through lib/gmsh (these and gmsh/recombine.hpp); the SDK headers are private to
+// quadapt goes through lib/gmsh (these and gmsh/gmsh_recombine.hpp); the SDK headers are private to
 // the library.
 //
 //   GmshSession gmsh;                                   // initialise (nested sessions share it)

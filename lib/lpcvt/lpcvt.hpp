@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "lpcvt/background.hpp"
-#include "lpcvt/boundary.hpp"
+#include "lpcvt/boundary_points.hpp"
 #include "lpcvt/metric_graph.hpp"
 #include "lpcvt/optimize.hpp"
 #include "lpcvt/seed.hpp"

@@ -6,7 +6,7 @@
 #include "core/error.hpp"
 #include "lpcvt/energy.hpp"
 #include "lpcvt/metric_filter.hpp"
-#include "lpcvt/quality.hpp"
+#include "lpcvt/point_quality.hpp"
 #include "lpcvt/triangulate.hpp"
 
 namespace quadapt::lpcvt {

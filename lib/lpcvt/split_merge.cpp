@@ -4,7 +4,7 @@
 #include <map>
 #include <set>
 
-#include "lpcvt/boundary.hpp"
+#include "lpcvt/boundary_points.hpp"
 #include "lpcvt/delaunay.hpp"
 #include "lpcvt/rvd.hpp"
 

@@ -140,44 +140,4 @@ Mesh triangulate_domain(const std::vector<Vec2>& sites_in, int nfixed,
   throw NumericalError("lpcvt: could not conform the triangulation to the boundary");
 }
 
-std::string TriangulationCheck::summary() const {
-  std::ostringstream os;
-  os << triangles << " triangles, " << non_positive << " with area <= 0 (min area " << min_area
-     << "), area " << area << ", " << boundary_edges << " boundary edges, "
-     << boundary_edges_missing << " not on exactly one triangle, " << free_edges_unlisted
-     << " free triangle edges not on the boundary";
-  return os.str();
-}
-
-TriangulationCheck check_triangulation(const Mesh& m) {
-  TriangulationCheck c;
-  std::map<std::pair<int, int>, int> count;
-  c.min_area = 1e300;
-  for (int k = 0; k < m.num_cells(); ++k) {
-    const Cell& cl = m.cells[k];
-    if (cl.nv != 3) continue;
-    ++c.triangles;
-    double a = cell_area(m, k);
-    c.area += a;
-    c.min_area = std::min(c.min_area, a);
-    if (!(a > 0)) ++c.non_positive;
-    for (int e = 0; e < 3; ++e) {
-      int u = cl.v[e], v = cl.v[(e + 1) % 3];
-      ++count[{std::min(u, v), std::max(u, v)}];
-    }
-  }
-  if (!c.triangles) c.min_area = 0;
-  std::map<std::pair<int, int>, int> bset;
-  for (const auto& b : m.boundary) {
-    ++c.boundary_edges;
-    std::pair<int, int> key{std::min(b.v[0], b.v[1]), std::max(b.v[0], b.v[1])};
-    ++bset[key];
-    auto it = count.find(key);
-    if (it == count.end() || it->second != 1) ++c.boundary_edges_missing;
-  }
-  for (const auto& [e, n] : count)
-    if (n == 1 && !bset.count(e)) ++c.free_edges_unlisted;
-  return c;
-}
-
 }  // namespace quadapt::lpcvt

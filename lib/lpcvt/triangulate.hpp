@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mesh/mesh.hpp"
+#include "mesh/triangulation.hpp"
 
 namespace quadapt::lpcvt {
 
@@ -21,20 +22,5 @@ Mesh triangulate_domain(const std::vector<Vec2>& sites, int nfixed,
                         const std::vector<std::array<int, 2>>& segments,
                         const std::vector<int>& segment_group, const Mesh& background);
 
-/// Validity of a triangulation: all triangles counter-clockwise with positive area, total area,
-/// every boundary edge an edge of exactly one triangle, and every edge used by one triangle
-/// only a boundary edge (the mesh conforms to its boundary).
-struct TriangulationCheck {
-  int triangles = 0;
-  int non_positive = 0;          ///< triangles with area <= 0
-  double min_area = 0;
-  double area = 0;
-  int boundary_edges = 0;
-  int boundary_edges_missing = 0;  ///< boundary edges not an edge of exactly one triangle
-  int free_edges_unlisted = 0;     ///< triangle edges on one triangle that are no boundary edge
-  bool ok() const { return triangles > 0 && non_positive == 0 && boundary_edges_missing == 0 && free_edges_unlisted == 0; }
-  std::string summary() const;
-};
-TriangulationCheck check_triangulation(const Mesh& tri);
 
 }  // namespace quadapt::lpcvt

@@ -1,6 +1,8 @@
 #include "mesh/boundary.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <sstream>
 #include <cmath>
 #include <map>
 #include <set>
@@ -18,7 +20,43 @@ Key key(int a, int b) { return a < b ? Key{a, b} : Key{b, a}; }
 bool lower(const Vec2& p, const Vec2& q) { return p.y() < q.y() || (p.y() == q.y() && p.x() < q.x()); }
 
 constexpr double kCollinear = 1e-6;  // radians: below this two edges are on one line
+
+std::uint64_t dkey(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+std::uint64_t ukey(int a, int b) { return a < b ? dkey(a, b) : dkey(b, a); }
+
+std::string at(const Vec2& p) {
+  std::ostringstream s;
+  s << "(" << p.x() << ", " << p.y() << ")";
+  return s.str();
+}
 }  // namespace
+
+std::vector<EdgeNodes> free_edges(const Mesh& m, bool strict) {
+  // directed edge -> count; undirected -> count
+  std::unordered_map<std::uint64_t, int> directed, undirected;  // edge key -> uses
+  directed.reserve(4 * m.cells.size());
+  undirected.reserve(4 * m.cells.size());
+  for (const auto& c : m.cells)
+    for (int i = 0; i < c.nv; ++i) {
+      int a = c.v[i], b = c.v[(i + 1) % c.nv];
+      if (++directed[dkey(a, b)] > 1 && strict)
+        throw InputError("mesh: edge between nodes at " + at(m.nodes[a]) + " and " + at(m.nodes[b]) +
+                         " is used twice in the same direction (inconsistent orientation or overlapping cells)");
+      if (++undirected[ukey(a, b)] > 2 && strict)
+        throw InputError("mesh: edge between nodes at " + at(m.nodes[a]) + " and " + at(m.nodes[b]) +
+                         " is shared by more than two cells");
+    }
+  std::vector<EdgeNodes> out;
+  for (const auto& c : m.cells)
+    for (int i = 0; i < c.nv; ++i) {
+      int a = c.v[i], b = c.v[(i + 1) % c.nv];
+      if (undirected[ukey(a, b)] == 1) out.push_back({a, b});
+    }
+  return out;
+}
+
 
 std::vector<EdgeNodes> boundary_free_edges(const Mesh& m) {
   std::vector<EdgeNodes> out;
@@ -34,17 +72,7 @@ std::vector<EdgeNodes> boundary_free_edges(const Mesh& m) {
   } catch (const InputError&) {
     // Broken topology (reported by validate_mesh): fall back to edges used once.
   }
-  std::map<Key, std::pair<int, EdgeNodes>> count;
-  for (const Cell& c : m.cells)
-    for (int e = 0; e < c.nv; ++e) {
-      int a = c.v[e], b = c.v[(e + 1) % c.nv];
-      auto& slot = count[key(a, b)];
-      ++slot.first;
-      slot.second = {a, b};
-    }
-  for (const auto& [k, v] : count)
-    if (v.first == 1) out.push_back(v.second);
-  return out;
+  return free_edges(m, false);
 }
 
 bool is_unit_square(const Mesh& m, double tol) {

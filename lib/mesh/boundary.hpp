@@ -23,6 +23,12 @@ namespace quadapt {
 
 using EdgeNodes = std::array<int, 2>;
 
+/// Edges used by exactly one cell (conforming meshes: a hanging node's long edge counts as
+/// free), oriented as in that cell (the cell on their left when cells are counter-clockwise),
+/// in cell order. strict: throws InputError("mesh: ...") for an edge shared by more than two
+/// cells or used twice in the same direction (inconsistent orientation / overlapping cells).
+std::vector<EdgeNodes> free_edges(const Mesh& m, bool strict = true);
+
 /// Free edges, each oriented as its (counter-clockwise) cell runs it, i.e. with the domain on
 /// the left. Uses build_topology (hanging nodes); if the topology cannot be built (overlapping
 /// or misoriented cells, which validate_mesh reports), every edge used by one cell only.

@@ -10,7 +10,7 @@
 #include <unordered_map>
 
 #include "core/error.hpp"
-#include "gmsh/recombine.hpp"
+#include "gmsh/gmsh_recombine.hpp"
 #include "quad/mesh_utils.hpp"
 
 namespace quadapt {

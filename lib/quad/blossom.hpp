@@ -8,7 +8,7 @@
 // flipped, overlapping elements here: ../shared/LIBRARY-FACTS.md). Then
 // Mesh.RecombinationAlgorithm = 1 (Blossom: minimum-cost perfect matching of the triangles'
 // dual graph, cost = deviation of the quad's angles from 90 degrees in physical space) and
-// Gmsh's model::mesh::recombine() (through lib/gmsh/recombine.hpp).
+// Gmsh's model::mesh::recombine() (through lib/gmsh/gmsh_recombine.hpp).
 //
 // Two ways of using Gmsh's answer:
 //  - Pairing (also the fall-back of the clean-up mode): Gmsh runs without its clean-up (Mesh.RecombineOptimizeTopology = 0,

@@ -24,30 +24,6 @@ std::string at(const Vec2& p) {
 }
 }  // namespace
 
-std::vector<std::array<int, 2>> free_edges(const Mesh& m) {
-  // directed edge -> count; undirected -> count
-  std::unordered_map<std::uint64_t, int> directed, undirected;
-  directed.reserve(4 * m.cells.size());
-  undirected.reserve(4 * m.cells.size());
-  for (const auto& c : m.cells)
-    for (int i = 0; i < c.nv; ++i) {
-      int a = c.v[i], b = c.v[(i + 1) % c.nv];
-      if (++directed[key(a, b)] > 1)
-        throw InputError("mesh: edge between nodes at " + at(m.nodes[a]) + " and " + at(m.nodes[b]) +
-                         " is used twice in the same direction (inconsistent orientation or overlapping cells)");
-      if (++undirected[ukey(a, b)] > 2)
-        throw InputError("mesh: edge between nodes at " + at(m.nodes[a]) + " and " + at(m.nodes[b]) +
-                         " is shared by more than two cells");
-    }
-  std::vector<std::array<int, 2>> out;
-  for (const auto& c : m.cells)
-    for (int i = 0; i < c.nv; ++i) {
-      int a = c.v[i], b = c.v[(i + 1) % c.nv];
-      if (undirected[ukey(a, b)] == 1) out.push_back({a, b});
-    }
-  return out;
-}
-
 std::vector<std::vector<int>> boundary_loops(const Mesh& m) {
   auto fe = free_edges(m);
   std::unordered_map<int, int> next;
@@ -153,35 +129,6 @@ bool make_triangle_count_even(Mesh& m) {
   }
   m.clear_fields();
   return true;
-}
-
-void check_triangulation(const Mesh& m, const std::string& path) {
-  if (m.cells.empty()) throw InputError(path, "the mesh has no cells");
-  if (m.num_quads() > 0)
-    throw InputError(path, "not a triangulation: " + std::to_string(m.num_quads()) +
-                               " quadrilateral cells (recombine needs triangles only)");
-  for (const auto& p : m.nodes)
-    if (!std::isfinite(p.x()) || !std::isfinite(p.y())) throw InputError(path, "non-finite node coordinate");
-  for (int c = 0; c < m.num_cells(); ++c) {
-    for (int i = 0; i < 3; ++i)
-      if (m.cells[c].v[i] < 0 || m.cells[c].v[i] >= m.num_nodes())
-        throw InputError(path, "cell " + std::to_string(c) + " refers to a missing node");
-    if (!(cell_area(m, c) > 0))
-      throw InputError(path, "triangle " + std::to_string(c) + " at " + at(cell_centroid(m, c)) +
-                                 " is inverted or degenerate (area " + std::to_string(cell_area(m, c)) + ")");
-  }
-  std::vector<std::array<int, 2>> fe;
-  try {
-    fe = free_edges(m);
-  } catch (const InputError& e) {
-    throw InputError(path, std::string(e.what()).substr(6));  // strip "mesh: "
-  }
-  std::unordered_map<std::uint64_t, char> isfree;
-  for (const auto& e : fe) isfree[ukey(e[0], e[1])] = 1;
-  for (const auto& e : m.boundary)
-    if (!isfree.count(ukey(e.v[0], e.v[1])))
-      throw InputError(path, "boundary edge between " + at(m.nodes[e.v[0]]) + " and " + at(m.nodes[e.v[1]]) +
-                                 " is not a free edge of the triangulation");
 }
 
 }  // namespace quadapt

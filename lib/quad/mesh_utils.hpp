@@ -4,15 +4,11 @@
 #include <string>
 #include <vector>
 
+#include "mesh/boundary.hpp"
+#include "mesh/triangulation.hpp"
 #include "mesh/mesh.hpp"
 
 namespace quadapt {
-
-/// Edges used by exactly one cell, oriented as in that cell (so the cell lies on their left
-/// when cells are counter-clockwise), in cell order. Throws InputError("mesh: ...") for an
-/// edge shared by more than two cells or used twice in the same direction (inconsistent
-/// orientation / overlapping cells).
-std::vector<std::array<int, 2>> free_edges(const Mesh& m);
 
 /// The free edges chained into closed loops of node indices (first node not repeated). Loops
 /// follow the free-edge orientation; the outer boundary of a CCW mesh has positive signed
@@ -34,9 +30,5 @@ int orient_counter_clockwise(Mesh& m);
 /// m.boundary, becomes two edges of the same group). Returns true when a split was made.
 bool make_triangle_count_even(Mesh& m);
 
-/// Throws InputError("PATH: ...") unless m is a valid triangulation for recombination: at
-/// least one cell, triangles only, finite coordinates, every cell counter-clockwise with
-/// positive area, every listed boundary edge a free edge.
-void check_triangulation(const Mesh& m, const std::string& path);
 
 }  // namespace quadapt

@@ -2,13 +2,13 @@
 
 #include "core/error.hpp"
 #include "quad/mesh_utils.hpp"
-#include "quad/split.hpp"
+#include "quad/subdivide.hpp"
 
 namespace quadapt {
 
 Mesh recombine_to_all_quads(const Mesh& tri_in, const RecombineOptions& opt, RecombineStats* stats,
                             const std::string& path) {
-  check_triangulation(tri_in, path);
+  require_triangulation(tri_in, path);
   RecombineStats st;
   st.triangles_in = tri_in.num_cells();
   Mesh tri = tri_in;

@@ -11,7 +11,7 @@
 #include "mesh/mesh.hpp"
 #include "quad/blossom.hpp"
 #include "quad/metric_matching.hpp"
-#include "quad/quality.hpp"
+#include "quad/quality_summary.hpp"
 
 namespace quadapt {
 

@@ -2,7 +2,7 @@
 // JSON forms of the quad module's statistics, for the tools' reports.
 #include <nlohmann/json.hpp>
 
-#include "quad/quality.hpp"
+#include "quad/quality_summary.hpp"
 #include "quad/recombine.hpp"
 
 namespace quadapt {

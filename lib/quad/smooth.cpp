@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 #include "quad/mesh_utils.hpp"
-#include "quad/quality.hpp"
+#include "quad/quality_summary.hpp"
 
 namespace quadapt {
 

@@ -9,7 +9,7 @@
 #include "bamg/inria_mesh.hpp"
 #include "core/error.hpp"
 #include "quad/mesh_utils.hpp"
-#include "quad/quality.hpp"
+#include "quad/quality_summary.hpp"
 
 using namespace quadapt;
 

@@ -6,7 +6,7 @@
 
 #include "core/error.hpp"
 #include "helpers.hpp"
-#include "lpcvt/boundary.hpp"
+#include "lpcvt/boundary_points.hpp"
 
 using namespace lpcvt_test;
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "helpers.hpp"
-#include "lpcvt/boundary.hpp"
+#include "lpcvt/boundary_points.hpp"
 #include "lpcvt/energy.hpp"
 #include "fem/quadrature.hpp"
 #include "lpcvt/rvd.hpp"

@@ -7,14 +7,14 @@
 #include <string>
 
 #include "helpers.hpp"
-#include "lpcvt/boundary.hpp"
+#include "lpcvt/boundary_points.hpp"
 #include "lpcvt/delaunay.hpp"
 #include "lpcvt/energy.hpp"
 #include "lpcvt/lattice.hpp"
 #include "lpcvt/lpcvt.hpp"
 #include "lpcvt/metric_filter.hpp"
 #include "lpcvt/multilevel.hpp"
-#include "lpcvt/quality.hpp"
+#include "lpcvt/point_quality.hpp"
 #include "lpcvt/split_merge.hpp"
 #include "lpcvt/triangulate.hpp"
 #include "mesh/topology.hpp"
@@ -239,7 +239,7 @@ TEST_CASE("multilevel and lattice starts: exact count, valid mesh, aligned cells
       o.coarse_points = 100;
     }
     LpcvtResult r = run_lpcvt(bg, o);
-    TriangulationCheck c = check_triangulation(r.mesh);
+    quadapt::TriangulationCheck c = check_triangulation(r.mesh);
     CHECK(c.ok());
     CHECK(static_cast<int>(r.sites.size()) == static_cast<int>(std::lround(r.requested_points)));
     CHECK(r.mesh.num_cells() == doctest::Approx(2 * r.metric_area).epsilon(0.01));
@@ -264,7 +264,7 @@ TEST_CASE("non-convex domains with the frame defaults (lattice start, weighted e
     o.lbfgs.delta = 1e-3;
     o.lbfgs.past = 10;
     LpcvtResult r = run_lpcvt(bg, o);
-    TriangulationCheck c = check_triangulation(r.mesh);
+    quadapt::TriangulationCheck c = check_triangulation(r.mesh);
     INFO(c.summary());
     CHECK(c.ok());
     CHECK(c.area == doctest::Approx(bg.area()).epsilon(1e-9));

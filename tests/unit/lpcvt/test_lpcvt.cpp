@@ -10,7 +10,7 @@
 #include "helpers.hpp"
 #include "lpcvt/energy.hpp"
 #include "lpcvt/lpcvt.hpp"
-#include "lpcvt/quality.hpp"
+#include "lpcvt/point_quality.hpp"
 #include "lpcvt/triangulate.hpp"
 
 using namespace lpcvt_test;
@@ -18,7 +18,7 @@ using namespace lpcvt_test;
 namespace {
 
 void check_valid(const LpcvtResult& r, const Background& bg) {
-  TriangulationCheck c = check_triangulation(r.mesh);
+  quadapt::TriangulationCheck c = check_triangulation(r.mesh);
   INFO(c.summary());
   CHECK(c.ok());
   CHECK(c.area == doctest::Approx(bg.area()).epsilon(1e-9));

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "helpers.hpp"
-#include "lpcvt/boundary.hpp"
+#include "lpcvt/boundary_points.hpp"
 #include "lpcvt/energy.hpp"
 #include "lpcvt/lattice.hpp"
 #include "lpcvt/metric_graph.hpp"

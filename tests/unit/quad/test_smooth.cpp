@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "quad/mesh_utils.hpp"
-#include "quad/quality.hpp"
+#include "quad/quality_summary.hpp"
 #include "quad/smooth.hpp"
-#include "quad/split.hpp"
+#include "quad/subdivide.hpp"
 #include "test_meshes.hpp"
 
 using namespace quadapt;

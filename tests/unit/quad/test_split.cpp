@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "quad/mesh_utils.hpp"
-#include "quad/quality.hpp"
-#include "quad/split.hpp"
+#include "quad/quality_summary.hpp"
+#include "quad/subdivide.hpp"
 #include "test_meshes.hpp"
 
 using namespace quadapt;
@@ -93,5 +93,5 @@ TEST_CASE("parity fix: odd triangle count becomes even, boundary group kept") {
   CHECK(total_area(m) == doctest::Approx(a).epsilon(1e-14));
   CHECK(m.boundary.size() == nb + 1);
   CHECK(!make_triangle_count_even(m));
-  check_triangulation(m, "test");
+  require_triangulation(m, "test");
 }

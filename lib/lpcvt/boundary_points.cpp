@@ -1,4 +1,4 @@
-#include "lpcvt/boundary.hpp"
+#include "lpcvt/boundary_points.hpp"
 
 #include <algorithm>
 #include <cmath>

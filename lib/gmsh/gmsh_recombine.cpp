@@ -1,4 +1,4 @@
-#include "gmsh/recombine.hpp"
+#include "gmsh/gmsh_recombine.hpp"
 
 #include <gmsh.h>
 

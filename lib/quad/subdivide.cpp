@@ -1,4 +1,4 @@
-#include "quad/split.hpp"
+#include "quad/subdivide.hpp"
 
 #include <cstdint>
 #include <unordered_map>

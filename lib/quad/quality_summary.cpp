@@ -1,4 +1,4 @@
-#include "quad/quality.hpp"
+#include "quad/quality_summary.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "lpcvt/quality.hpp"
+#include "lpcvt/point_quality.hpp"
 
 #include <algorithm>
 #include <cmath>
