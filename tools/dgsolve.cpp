@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   app.add_option("-c,--case", case_path, "Case file (.json): D, c, exact solution, boundaries, functional")
       ->required()
       ->check(CLI::ExistingFile);
-  app.add_option("-p,--degree", opt.p, "Polynomial degree P (1..8)")->required();
+  app.add_option("-p,--degree", opt.p, "Polynomial degree P (" + degree_range() + ")")->required();
   app.add_option("-o,--output", out, "Output mesh with the field 'u' (.msh); report beside it as .json")
       ->required();
   app.add_option("--solver", solver,
@@ -52,7 +52,8 @@ int main(int argc, char** argv) {
     tool.input(case_path);
     tool.output(out);
     opt.solver.kind = parse_linear_solver(solver);
-    if (opt.p < 1 || opt.p > 8) throw InputError("", "degree -p " + std::to_string(opt.p) + " is out of range (1..8)");
+    if (opt.p < kMinDegree || opt.p > kMaxDegree)
+      throw InputError("", "degree -p " + std::to_string(opt.p) + " is out of range (" + degree_range() + ")");
 
     Mesh mesh;
     Case cs;

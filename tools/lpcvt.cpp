@@ -6,6 +6,7 @@
 
 #include "cli/tool.hpp"
 #include "core/atomic_file.hpp"
+#include "dg/discretization.hpp"
 #include "io/msh.hpp"
 #include "lpcvt/run.hpp"
 
@@ -54,7 +55,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--complexity", job.complexity, "Target DOFs: the frame rescaled to complexity/(degree+1)^2 cells")
       ->check(CLI::PositiveNumber);
-  app.add_option("--degree", job.degree, "DG degree P for --complexity (cells = complexity/(P+1)^2)")->check(CLI::Range(0, 20));
+  app.add_option("--degree", job.degree, "DG degree P for --complexity (cells = complexity/(P+1)^2)")->check(CLI::Range(kMinDegree, kMaxDegree));
   app.add_option("--smooth", job.smooth, "Log-Euclidean smoothing of the metric M^T M across background cells: passes (0 = none)")
       ->capture_default_str()->check(CLI::Range(0, 1000));
   app.add_option("--gradation", job.gradation, "Anisotropic size gradation: growth per unit metric length between "

@@ -47,6 +47,12 @@
 
 namespace quadapt {
 
+/// The DG degrees quadapt supports: the one range of the library, the tools and the loop
+/// (scripts/loop/run-loop.sh reads it from `dgsolve --help`).
+constexpr int kMinDegree = 1, kMaxDegree = 8;
+/// "1..8"
+inline std::string degree_range() { return std::to_string(kMinDegree) + ".." + std::to_string(kMaxDegree); }
+
 using SparseMatrixCSC = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 struct DGOptions {

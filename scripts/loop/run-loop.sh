@@ -26,7 +26,8 @@ ctl() { "$PY" "$here/loopctl.py" "$@"; }
 
 die() { echo "loop: error: $*" >&2; exit 2; }
 
-CASE="" MESH="" P="" METHOD="" MODE="" STEPS="" GROWTH="1.5" OUT="" MAXDOFS="0" FRACTION="0.3" FF_BY=""
+# The one set of loop defaults (Makefile.cases passes only what the user sets).
+CASE="" MESH="" P="" METHOD="" MODE="" STEPS="6" GROWTH="1.5" OUT="" MAXDOFS="0" FRACTION="0.3" FF_BY=""
 SEED="1" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0
 while [ $# -gt 0 ]; do
   opt="$1"
@@ -70,7 +71,6 @@ fi
 msg="$(ctl check-case "$CASE" 2>&1)" || die "$msg"
 [ -n "$MESH" ] || die "MESH is not set (the start mesh, e.g. MESH=examples/meshes/square16.msh)"
 [ -f "$MESH" ] || die "MESH '$MESH': no such file"
-[[ "$P" =~ ^[1-9]$ ]] || die "P='$P': the DG degree must be an integer 1..9"
 is_uint "$STEPS" || die "STEPS='$STEPS': must be a non-negative integer (number of adaptations)"
 is_num "$GROWTH" && "$PY" -c "import sys; sys.exit(0 if float('$GROWTH') > 1 else 1)" \
   || die "GROWTH='$GROWTH': must be a number > 1 (complexity growth per step)"
@@ -100,6 +100,10 @@ if [ ${#missing[@]} -gt 0 ]; then
   die "tool(s) not found: ${missing[*]} (needed by METHOD=$METHOD MODE=$MODE). Build them
   (cmake --build build --target ${missing[*]}) or point BIN= at the directory that holds them"
 fi
+# the DG degree range is the library's, as dgsolve states it ("Polynomial degree P (1..8)")
+range="$(dgsolve --help | sed -n 's/.*Polynomial degree P (\([0-9]*\)\.\.\([0-9]*\)).*/\1 \2/p' | head -n 1)"
+read -r pmin pmax <<< "${range:-1 8}"
+is_uint "$P" && [ "$P" -ge "$pmin" ] && [ "$P" -le "$pmax" ] || die "P='$P': the DG degree must be an integer $pmin..$pmax"
 if [ "$PICTURES" = yes ] && ! command -v meshplot >/dev/null 2>&1; then
   echo "loop: note: meshplot not found; the run will have no mesh pictures" >&2
 fi
