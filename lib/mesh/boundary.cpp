@@ -20,18 +20,18 @@ Key key(int a, int b) { return a < b ? Key{a, b} : Key{b, a}; }
 bool lower(const Vec2& p, const Vec2& q) { return p.y() < q.y() || (p.y() == q.y() && p.x() < q.x()); }
 
 constexpr double kCollinear = 1e-6;  // radians: below this two edges are on one line
+}  // namespace
 
-std::uint64_t dkey(int a, int b) {
+std::uint64_t directed_edge_key(int a, int b) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
-std::uint64_t ukey(int a, int b) { return a < b ? dkey(a, b) : dkey(b, a); }
+std::uint64_t edge_key(int a, int b) { return a < b ? directed_edge_key(a, b) : directed_edge_key(b, a); }
 
-std::string at(const Vec2& p) {
+std::string point_text(const Vec2& p) {
   std::ostringstream s;
   s << "(" << p.x() << ", " << p.y() << ")";
   return s.str();
 }
-}  // namespace
 
 std::vector<EdgeNodes> free_edges(const Mesh& m, bool strict) {
   // directed edge -> count; undirected -> count
@@ -41,18 +41,18 @@ std::vector<EdgeNodes> free_edges(const Mesh& m, bool strict) {
   for (const auto& c : m.cells)
     for (int i = 0; i < c.nv; ++i) {
       int a = c.v[i], b = c.v[(i + 1) % c.nv];
-      if (++directed[dkey(a, b)] > 1 && strict)
-        throw InputError("mesh: edge between nodes at " + at(m.nodes[a]) + " and " + at(m.nodes[b]) +
+      if (++directed[directed_edge_key(a, b)] > 1 && strict)
+        throw InputError("mesh: edge between nodes at " + point_text(m.nodes[a]) + " and " + point_text(m.nodes[b]) +
                          " is used twice in the same direction (inconsistent orientation or overlapping cells)");
-      if (++undirected[ukey(a, b)] > 2 && strict)
-        throw InputError("mesh: edge between nodes at " + at(m.nodes[a]) + " and " + at(m.nodes[b]) +
+      if (++undirected[edge_key(a, b)] > 2 && strict)
+        throw InputError("mesh: edge between nodes at " + point_text(m.nodes[a]) + " and " + point_text(m.nodes[b]) +
                          " is shared by more than two cells");
     }
   std::vector<EdgeNodes> out;
   for (const auto& c : m.cells)
     for (int i = 0; i < c.nv; ++i) {
       int a = c.v[i], b = c.v[(i + 1) % c.nv];
-      if (undirected[ukey(a, b)] == 1) out.push_back({a, b});
+      if (undirected[edge_key(a, b)] == 1) out.push_back({a, b});
     }
   return out;
 }

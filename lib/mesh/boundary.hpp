@@ -14,6 +14,8 @@
 // taken) boundary_1, boundary_2, ... in a deterministic order: loops by their lowest (y, then
 // x) node, curves along each loop (counter-clockwise around the domain) from its lowest corner.
 #include <array>
+#include <cstdint>
+#include <string>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,12 @@
 namespace quadapt {
 
 using EdgeNodes = std::array<int, 2>;
+
+/// Keys of the directed edge a -> b and of the undirected edge {a, b} (maps of edges).
+std::uint64_t directed_edge_key(int a, int b);
+std::uint64_t edge_key(int a, int b);
+/// "(x, y)": a point in messages.
+std::string point_text(const Vec2& p);
 
 /// Edges used by exactly one cell (conforming meshes: a hanging node's long edge counts as
 /// free), oriented as in that cell (the cell on their left when cells are counter-clockwise),

@@ -12,17 +12,6 @@
 
 namespace quadapt {
 
-namespace {
-std::uint64_t ukey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
-std::string at(const Vec2& p) {
-  std::ostringstream s;
-  s << "(" << p.x() << ", " << p.y() << ")";
-  return s.str();
-}
-}  // namespace
 
 std::string TriangulationCheck::summary() const {
   std::ostringstream os;
@@ -76,7 +65,7 @@ void require_triangulation(const Mesh& m, const std::string& path) {
       if (m.cells[c].v[i] < 0 || m.cells[c].v[i] >= m.num_nodes())
         throw InputError(path, "cell " + std::to_string(c) + " refers to a missing node");
     if (!(cell_area(m, c) > 0))
-      throw InputError(path, "triangle " + std::to_string(c) + " at " + at(cell_centroid(m, c)) +
+      throw InputError(path, "triangle " + std::to_string(c) + " at " + point_text(cell_centroid(m, c)) +
                                  " is inverted or degenerate (area " + std::to_string(cell_area(m, c)) + ")");
   }
   std::vector<EdgeNodes> fe;
@@ -86,10 +75,10 @@ void require_triangulation(const Mesh& m, const std::string& path) {
     throw InputError(path, std::string(e.what()).substr(6));  // strip "mesh: "
   }
   std::unordered_map<std::uint64_t, char> isfree;
-  for (const auto& e : fe) isfree[ukey(e[0], e[1])] = 1;
+  for (const auto& e : fe) isfree[edge_key(e[0], e[1])] = 1;
   for (const auto& e : m.boundary)
-    if (!isfree.count(ukey(e.v[0], e.v[1])))
-      throw InputError(path, "boundary edge between " + at(m.nodes[e.v[0]]) + " and " + at(m.nodes[e.v[1]]) +
+    if (!isfree.count(edge_key(e.v[0], e.v[1])))
+      throw InputError(path, "boundary edge between " + point_text(m.nodes[e.v[0]]) + " and " + point_text(m.nodes[e.v[1]]) +
                                  " is not a free edge of the triangulation");
 }
 

@@ -11,26 +11,13 @@
 
 namespace quadapt {
 
-namespace {
-std::uint64_t key(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
-std::uint64_t ukey(int a, int b) { return a < b ? key(a, b) : key(b, a); }
-
-std::string at(const Vec2& p) {
-  std::ostringstream s;
-  s << "(" << p.x() << ", " << p.y() << ")";
-  return s.str();
-}
-}  // namespace
-
 std::vector<std::vector<int>> boundary_loops(const Mesh& m) {
   auto fe = free_edges(m);
   std::unordered_map<int, int> next;
   next.reserve(fe.size());
   for (const auto& e : fe)
     if (!next.emplace(e[0], e[1]).second)
-      throw InputError("mesh: boundary node at " + at(m.nodes[e[0]]) +
+      throw InputError("mesh: boundary node at " + point_text(m.nodes[e[0]]) +
                        " starts two boundary edges (the domain is pinched there)");
   std::vector<std::vector<int>> loops;
   std::unordered_map<int, char> used;
@@ -42,10 +29,10 @@ std::vector<std::vector<int>> boundary_loops(const Mesh& m) {
       used[v] = 1;
       loop.push_back(v);
       auto it = next.find(v);
-      if (it == next.end()) throw InputError("mesh: boundary is not closed at node " + at(m.nodes[v]));
+      if (it == next.end()) throw InputError("mesh: boundary is not closed at node " + point_text(m.nodes[v]));
       v = it->second;
     }
-    if (v != e[0]) throw InputError("mesh: boundary does not close into simple loops near " + at(m.nodes[v]));
+    if (v != e[0]) throw InputError("mesh: boundary does not close into simple loops near " + point_text(m.nodes[v]));
     loops.push_back(std::move(loop));
   }
   return loops;
@@ -66,11 +53,11 @@ std::vector<char> boundary_node_flags(const Mesh& m) {
   std::unordered_map<std::uint64_t, int> count;
   count.reserve(4 * m.cells.size());
   for (const auto& c : m.cells)
-    for (int i = 0; i < c.nv; ++i) ++count[ukey(c.v[i], c.v[(i + 1) % c.nv])];
+    for (int i = 0; i < c.nv; ++i) ++count[edge_key(c.v[i], c.v[(i + 1) % c.nv])];
   for (const auto& c : m.cells)
     for (int i = 0; i < c.nv; ++i) {
       int a = c.v[i], b = c.v[(i + 1) % c.nv];
-      if (count[ukey(a, b)] == 1) f[a] = f[b] = 1;
+      if (count[edge_key(a, b)] == 1) f[a] = f[b] = 1;
     }
   for (const auto& e : m.boundary) f[e.v[0]] = f[e.v[1]] = 1;
   return f;
