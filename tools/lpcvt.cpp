@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
       "optimiser that stops early still writes a valid mesh (\"converged\": false; with --strict "
       "exit code 1).");
   std::string in, out, analytic, voronoi_out, init = "", convention = "quadapt", cells_kind;
+  double cell_alpha = 0.9;
   LpcvtOptions opt;
   double scale = -1;
   int grid = 16;
@@ -66,6 +67,10 @@ int main(int argc, char** argv) {
   app.add_option("--cells", cells_kind,
                  "Voronoi cells of the energy: metric (frames' default: distances in each background cell's metric, so the points form a square lattice in the metric at any frame orientation; docs/lpcvt.md) or euclidean (the thesis's; --analytic's default)")
       ->check(CLI::IsMember({"metric", "euclidean"}));
+  app.add_option("--cell-anisotropy", cell_alpha,
+                 "With --cells metric: the cells' anisotropy is the metric's to this power (1: the metric's own cells, best on constant frames; 0: Euclidean; 0.9, the default, keeps the constant-frame figures and is better on adaptive frames with extreme stretch: docs/lpcvt.md)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--init", init,
                  "Initial points: lattice (frames' default: the frame-aligned lattice grown from one seed), "
                  "multilevel (coarse levels from density seeds, each finer level from the children of the "
@@ -220,8 +225,9 @@ int main(int argc, char** argv) {
       tool.report()["cells_per_triangle"] = cells_per_triangle;
       tool.option("metric_scale", bg->scale());
       if (cells_kind.empty()) cells_kind = analytic.empty() ? "metric" : "euclidean";
-      bg->set_metric_cells(cells_kind == "metric");
+      bg->set_metric_cells(cells_kind == "metric", cell_alpha);
       tool.option("cells", cells_kind);
+      tool.option("cell_anisotropy", cell_alpha);
     }
     LpcvtResult r;
     {

@@ -58,6 +58,11 @@ int main(int argc, char** argv) {
                  "Metric matching: pairs of metric quality at or below this stay triangles")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.99));
+  app.add_option("--pair-bonus", opt.metric.pair_bonus,
+                 "Metric matching: weight added to every pair (larger: fewer unmatched triangles, longer "
+                 "chains of sheared pairs)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
   bool no_split = false;
   app.add_flag("--no-split", no_split, "Stop after Blossom: write the quad-dominant mesh");
 

@@ -212,9 +212,31 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
     r.stop = "last minimisation stopped early: " + last.stop;
   r.mesh = triangulate_domain(sites, r.nfixed, r.boundary.segments, r.boundary.segment_group, bg.mesh());
   if (bg.metric_cells()) r.metric_flips = metric_flip_triangles(r.mesh, bg);
+  if (!bg.is_analytic()) attach_frame(r.mesh, bg);
   say(std::to_string(r.sites.size()) + " points (requested " + fmt("%.0f", r.requested_points) + "), " +
       std::to_string(r.mesh.num_cells()) + " triangles; " + r.stop);
   return r;
+}
+
+void attach_frame(Mesh& m, const Background& bg) {
+  CellField f;
+  f.name = "Vinv";
+  f.ncomp = 9;
+  f.values.assign(static_cast<size_t>(m.num_cells()) * 9, 0.0);
+  int hint = -1;
+  for (int c = 0; c < m.num_cells(); ++c) {
+    int q = bg.locate(cell_centroid(m, c), hint);
+    if (q < 0) q = bg.locate(m.nodes[m.cells[c].v[0]], hint);
+    if (q < 0) q = 0;
+    hint = q;
+    const Mat2 M = 4 * bg.cell(q).M;
+    f(c, 0) = M(0, 0);
+    f(c, 1) = M(0, 1);
+    f(c, 3) = M(1, 0);
+    f(c, 4) = M(1, 1);
+    f(c, 8) = 1;
+  }
+  m.set_field(std::move(f));
 }
 
 long metric_flip_triangles(Mesh& m, const Background& bg) {

@@ -96,6 +96,11 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
 
 /// Report figures: points, requested_points, triangles, iterations, evaluations, cycles,
 /// energy, grad_norm, converged, stop, and the convergence history (per iteration and per cycle).
+/// Adds the cell field "Vinv" to the triangles m: 4 M_eff of the background cell at each
+/// centroid (the quadapt convention, as --write-frame: the frame actually meshed, after
+/// --complexity/--smooth/--gradation), so that recombine matches in the metric without --frame.
+void attach_frame(Mesh& m, const Background& bg);
+
 /// Makes the triangulation m Delaunay in bg's metric (metric_graph.hpp): Lawson flips with the
 /// metric of the background cell at each edge's midpoint; boundary edges are never flipped.
 /// Returns the number of flips.

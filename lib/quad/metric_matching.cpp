@@ -88,7 +88,7 @@ Mesh metric_pairing(const Mesh& tri, const std::vector<Eigen::Matrix2d>& M,
     const double q = metric_quad_quality(F, P[quad[0]], P[quad[1]], P[quad[2]], P[quad[3]]);
     if (!(q > opt.min_quality)) continue;
     auto e = g.addEdge(node[x.t], node[y.t]);
-    weight[e] = std::lround(1000.0 * (q - opt.min_quality));
+    weight[e] = std::lround(1000.0 * (q + opt.pair_bonus));
     pair_of[e] = static_cast<int>(pairs.size());
     pairs.push_back({x.t, y.t, quad, q});
   }

@@ -230,9 +230,9 @@ while :; do
       fi
       if [ "$METHOD" = lpcvt ]; then
         run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED"
-        # --pairing: no node of lpcvt's triangles moves (Gmsh's node relocation and physical-space
-        # smoothing widen the boundary-layer rows; docs/lpcvt.md "Boundary layers")
-        run_tool "$d" recombine "$d/quad.msh" "$d/tri.msh" -- recombine "$d/tri.msh" -o "$d/quad.msh" --pairing
+        # the tools' defaults: recombine matches in the metric of the frame lpcvt attached to
+        # tri.msh (no node moves; docs/recombine.md)
+        run_tool "$d" recombine "$d/quad.msh" "$d/tri.msh" -- recombine "$d/tri.msh" -o "$d/quad.msh"
         run_tool "$d" quadsmooth "$d/adapted.msh" "$d/quad.msh" "$d/frame.msh" -- \
           quadsmooth "$d/quad.msh" -o "$d/adapted.msh" --frame "$d/frame.msh"
       else
