@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   std::string convention = "quadapt";
   app.add_option("--convention", convention,
-                 "Size convention of FRAME: quadapt (target cells 2h1 x 2h2, d = |det M|/4, DESIGN.md) or "
+                 "Size convention of FRAME: quadapt (target cells 2h1 x 2h2, d = |det M|/4, docs/design.md) or "
                  "philip (the thesis's files: full-edge sizes, d = |det M|, so M_quadapt = 2 M_philip)")
       ->capture_default_str()
       ->check(CLI::IsMember({"quadapt", "philip"}));

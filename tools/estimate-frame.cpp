@@ -1,5 +1,5 @@
 // estimate-frame: per-cell optimal frame shape and error constant from a DG solution
-// (thesis §5.2, eqs. 5.8-5.16; DESIGN.md §4). See docs/estimate-frame.md.
+// (thesis §5.2, eqs. 5.8-5.16; docs/design.md §4). See docs/estimate-frame.md.
 #include <algorithm>
 #include <cmath>
 #include <string>

@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
                  "Metric scale: M_eff = scale * M (default 0.25 for quadapt frames, 0.5 with "
                  "--convention philip, 1 for --analytic)");
   app.add_option("--convention", convention,
-                 "Size convention of FRAME: quadapt (d = det M / 4, DESIGN.md) or philip (the thesis's "
+                 "Size convention of FRAME: quadapt (d = det M / 4, docs/design.md) or philip (the thesis's "
                  "files: full-edge sizes, d = det M, so M_quadapt = 2 M_philip)")
       ->capture_default_str()
       ->check(CLI::IsMember({"quadapt", "philip"}));

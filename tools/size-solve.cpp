@@ -1,5 +1,5 @@
 // size-solve: the global size field and the target frame M = V^-1 (thesis §5.3-5.4, eqs.
-// 5.17-5.25, 3.13; DESIGN.md §3-4). See docs/size-solve.md.
+// 5.17-5.25, 3.13; docs/design.md §3-4). See docs/size-solve.md.
 #include <algorithm>
 #include <cmath>
 #include <string>

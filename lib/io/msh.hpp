@@ -1,5 +1,5 @@
 #pragma once
-// Gmsh MSH files <-> Mesh (DESIGN.md section 3).
+// Gmsh MSH files <-> Mesh (docs/design.md §3).
 //
 // Reading: MSH 4.1 (ASCII and binary) and MSH 2.2 (ASCII and binary). 2D meshes of 3-node
 // triangles and 4-node quads; 2-node lines become boundary edges of their physical group (by

@@ -12,7 +12,7 @@
 //     - a CellNodeField of vertex values (degree -1): the mean per cell;
 //     optionally as log10 |value| (the DWR, thesis Fig. 6.21), with a colour bar;
 //  2. the mesh edges (and the boundary edges thicker);
-//  3. the frame, when the field is the 9-component CellField "Vinv" (DESIGN.md section 3:
+//  3. the frame, when the field is the 9-component CellField "Vinv" (docs/design.md §3:
 //     M = upper-left 2x2 of the row-major 3x3, V = M^-1, columns of V are the frame vectors
 //     v, w with |v| = h1, |w| = h2, eq. 3.11/3.13), as one glyph per cell centroid:
 //     - Cross (default, thesis Fig. 6.5): the two axes +-v/|v| and +-w/|w| with half-lengths

@@ -124,7 +124,7 @@ def cmd_check_case(args):
     if not isinstance(d, dict):
         sys.exit("%s: a case file must be a JSON object" % path)
     if "exact" not in d:
-        sys.exit("%s: a case file needs an 'exact' solution expression (DESIGN.md section 3)" % path)
+        sys.exit("%s: a case file needs an 'exact' solution expression (docs/design.md §3)" % path)
 
 
 def cmd_params(args):

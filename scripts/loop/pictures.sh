@@ -72,7 +72,7 @@ if "$PY" -c "import matplotlib" 2>/dev/null; then
   mode="$("$PY" "$here/loopctl.py" get "$OUT/loop.json" mode)"
   method="$("$PY" "$here/loopctl.py" get "$OUT/loop.json" method)"
   thesis=()
-  tt="${THESIS_TABLES:-$root/../shared/reference/thesis-tables.json}"
+  tt="${THESIS_TABLES:-$root/docs/data/thesis-tables.json}"
   [ -n "$THESIS_KEY" ] && [ -f "$tt" ] && thesis=(--thesis "$tt" --thesis-case "$THESIS_KEY")
   if [ ! -s "$OUT/convergence.png" ] || [ "$OUT/convergence.csv" -nt "$OUT/convergence.png" ]; then
     "$PY" "$root/scripts/plot/convergence.py" --p "$p" --mode "$mode" --title "$NAME, p = $p" ${thesis[@]+"${thesis[@]}"} \

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# One adaptive loop (DESIGN.md section 1; docs/loop.md). Called by `make -f Makefile.cases loop`.
+# One adaptive loop (docs/design.md §1; docs/loop.md). Called by `make -f Makefile.cases loop`.
 #
 #   run-loop.sh --case CASE.json --mesh START.msh --p P --method lpcvt|bamg|fixed-fraction|uniform
 #               --mode feature|goal --steps N --growth G --out DIR
