@@ -1,5 +1,5 @@
 #pragma once
-// Mesh -> VTK XML UnstructuredGrid (.vtu), for ParaView (docs/file-formats.md §5).
+// Mesh -> VTK XML UnstructuredGrid (.vtu), for ParaView (docs/file-formats.md §6).
 //
 // Every field goes into the file:
 //  - CellFields (theta, rho, B, A1, A2, h, alpha, dwr, ... and the 9-component frame Vinv) are

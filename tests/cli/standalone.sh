@@ -9,18 +9,20 @@ cd "$S"
 # The patterns are assembled so that this file does not match itself.
 up='\.\.'/shared
 design=DESIGN'\.md'
-facts=LIBRARY-FACTS
-fixt=philip-fixtures
+facts=LIBRARY'-'FACTS
+fixt=philip'-'fixtures
+envvar=QUADAPT'_'SHARED'_'DIR
+pat="$up|$design|$facts|$fixt|$envvar"
 if git -C "$S" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
   files=$(git -C "$S" ls-files)
 else
   files=$(find . -path ./build -prune -o -path './build*' -prune -o -type f -print | sed 's#^\./##')
 fi
 bad=$(printf '%s\n' "$files" | grep -v '^tests/fixtures/philip/.*\.msh$' |
-      while IFS= read -r f; do [ -f "$f" ] && grep -I -l -E "$up|$design|$facts|$fixt|QUADAPT_SHARED_DIR" -- "$f" || true; done)
+      while IFS= read -r f; do [ -f "$f" ] && grep -I -l -E "$pat" -- "$f" || true; done)
 if [ -n "$bad" ]; then
   echo "standalone: these files refer to files outside the repository:" >&2
-  printf '%s\n' "$bad" | while IFS= read -r f; do grep -n -I -E "$up|$design|$facts|$fixt|QUADAPT_SHARED_DIR" -- "$f" | sed "s#^#  $f:#" >&2; done
+  printf '%s\n' "$bad" | while IFS= read -r f; do grep -n -I -E "$pat" -- "$f" | sed "s#^#  $f:#" >&2; done
   exit 1
 fi
 # What replaced them is there.
