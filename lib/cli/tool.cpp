@@ -7,6 +7,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/help_examples.hpp"
+#include "cli/parse_errors.hpp"
 #include "cli/provenance.hpp"
 #include "core/atomic_file.hpp"
 
@@ -21,6 +23,8 @@ constexpr const char* kExitCodes =
 Tool::Tool(std::string name, std::string summary, std::string details)
     : name_(std::move(name)), app_(summary, name_) {
   std::string footer = details.empty() ? std::string(kExitCodes) : details + "\n\n" + kExitCodes;
+  const std::string example = help_example(name_);
+  if (!example.empty()) footer += "\n\n" + example;
   app_.footer(footer);
   app_.set_version_flag("--version", version_text(name_));
   app_.add_option("--report", report_path_,
@@ -28,7 +32,7 @@ Tool::Tool(std::string name, std::string summary, std::string details)
   app_.add_flag("-q,--quiet", quiet_, "No progress messages on stderr");
   app_.add_option("--threads", threads_,
                   "OpenMP threads (default: OMP_NUM_THREADS, else all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeValue);
   report_ = nlohmann::json::object();
 }
 
@@ -92,7 +96,8 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   } catch (const CLI::Success& e) {  // --help, --version
     return app_.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << name_ << ": " << e.what() << " (see " << name_ << " --help)" << std::endl;
+    std::cerr << name_ << ": " << parse_error_message(app_, argc, argv, e) << " (see " << name_ << " --help)"
+              << std::endl;
     return 2;
   }
   if (threads_ > 0) omp_set_num_threads(threads_);

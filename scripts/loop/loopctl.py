@@ -33,7 +33,7 @@ TOOL_COLUMNS = ["dgsolve", "estimate_frame", "adjoint", "size_solve", "lpcvt", "
                 "quadsmooth", "refine"]
 COLUMNS = (["step", "cells", "dofs", "l2_error", "functional", "functional_error",
             "functional_error_estimate", "effectivity", "target_complexity", "continuous_complexity",
-            "t_solve"] + ["t_" + t for t in TOOL_COLUMNS] + ["t_step"])
+            "t_solve"] + ["t_" + t for t in TOOL_COLUMNS] + ["t_step", "warnings"])
 
 
 def load(path):
@@ -176,6 +176,12 @@ def row_for(step_dir, k):
     if isinstance(est, (int, float)) and isinstance(err, (int, float)) and err != 0:
         row["effectivity"] = est / err
     row["t_step"] = total
+    # the step's tool warnings (run-loop.sh record_warnings): "tool: message; tool: message"
+    try:
+        with open(os.path.join(step_dir, "warnings.txt")) as f:
+            row["warnings"] = "; ".join(line.strip() for line in f if line.strip()) or None
+    except OSError:
+        pass
     return row
 
 
