@@ -282,6 +282,6 @@ echo "$last" > "$OUT/loop.done.tmp-$$" && mv -f "$OUT/loop.done.tmp-$$" "$OUT/lo
 
 # ------------------------------------------------------------------ pictures (optional)
 if [ "$PICTURES" = yes ]; then
-  "$here/pictures.sh" "$OUT" --title "$name" ${WINDOW:+--window "$WINDOW"} ${THESIS_KEY:+--thesis-case "$THESIS_KEY"}
+  "$here/pictures.sh" "$OUT" ${WINDOW:+--window "$WINDOW"} ${THESIS_KEY:+--thesis-case "$THESIS_KEY"}
 fi
 say "done: $rows solves; table $OUT/convergence.csv"
