@@ -178,10 +178,10 @@ def row_for(step_dir, k):
     if isinstance(est, (int, float)) and isinstance(err, (int, float)) and err != 0:
         row["effectivity"] = est / err
     row["t_step"] = total
-    # the step's tool warnings (run-loop.sh record_warnings): "tool: message; tool: message"
+    # the step's tool warnings (run-loop.sh record_warnings): "tool: message | tool: message"
     try:
         with open(os.path.join(step_dir, "warnings.txt")) as f:
-            row["warnings"] = "; ".join(line.strip() for line in f if line.strip()) or None
+            row["warnings"] = " | ".join(line.strip() for line in f if line.strip()) or None
     except OSError:
         pass
     return row
