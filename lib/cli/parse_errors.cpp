@@ -1,5 +1,6 @@
 #include "cli/parse_errors.hpp"
 
+#include <cctype>
 #include <cstdlib>
 #include <regex>
 
@@ -35,7 +36,9 @@ std::string first_unknown_option(const CLI::App& app, int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a == "--") break;  // everything after is positional
-    if (a.size() < 2 || a[0] != '-' || is_number(a)) continue;
+    // "-", negative numbers and values such as "-6,4" (meshplot --range) are not options
+    if (a.size() < 2 || a[0] != '-' || is_number(a) || std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.')
+      continue;
     std::string name = a.substr(0, a.find('='));
     if (name.size() > 2 && name[1] != '-') name = name.substr(0, 2);  // -p2 -> -p
     if (app.get_option_no_throw(name) == nullptr) return a.substr(0, a.find('='));

@@ -11,7 +11,8 @@
 namespace quadapt {
 
 /// The first argument of argv[1..] that looks like an option ("-x", "--name", "--name=v") and
-/// that `app` does not define; "" when there is none. Negative numbers and "-" are not options.
+/// that `app` does not define; "" when there is none. "-", and "-" followed by a digit or "."
+/// (negative numbers, values like "-6,4"), are not options.
 std::string first_unknown_option(const CLI::App& app, int argc, char** argv);
 
 /// The message for a CLI11 parse error: the unknown option when there is one, else e.what()
