@@ -7,6 +7,7 @@
 #include "adjoint/dwr.hpp"
 #include "case/case.hpp"
 #include "cli/tool.hpp"
+#include "core/format.hpp"
 #include "dg/solve.hpp"
 #include "io/msh.hpp"
 #include "mesh/validate.hpp"
@@ -91,8 +92,8 @@ int main(int argc, char** argv) {
     auto& rep = tool.report();
     for (const auto& [name, t] : r.timings) rep["timings"][name] = t;
     tool.log("adjoint solved with " + r.solve.solver + " (" + std::to_string(r.solve.iterations) +
-             " iterations); estimate " + std::to_string(r.estimate) + ", true error " +
-             std::to_string(r.functional_error));
+             " iterations); estimate " + sci(r.estimate) + ", true error " +
+             sci(r.functional_error));
 
     {
       auto ph = tool.phase("write");

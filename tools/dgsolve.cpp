@@ -5,6 +5,8 @@
 
 #include "case/case.hpp"
 #include "cli/tool.hpp"
+#include "dg/degree.hpp"
+#include "core/format.hpp"
 #include "dg/solve.hpp"
 #include "io/msh.hpp"
 #include "mesh/validate.hpp"
@@ -32,7 +34,7 @@ int main(int argc, char** argv) {
   app.add_option("-c,--case", case_path, "Case file (.json): D, c, exact solution, boundaries, functional")
       ->required()
       ->check(CLI::ExistingFile);
-  app.add_option("-p,--degree", opt.p, "Polynomial degree P (1..8)")->required();
+  app.add_option("-p,--degree", opt.p, "Polynomial degree P (" + degree_range_text() + ")")->required();
   app.add_option("-o,--output", out, "Output mesh with the field 'u' (.msh); report beside it as .json")
       ->required();
   app.add_option("--solver", solver,
@@ -52,7 +54,7 @@ int main(int argc, char** argv) {
     tool.input(case_path);
     tool.output(out);
     opt.solver.kind = parse_linear_solver(solver);
-    if (opt.p < 1 || opt.p > 8) throw InputError("", "degree -p " + std::to_string(opt.p) + " is out of range (1..8)");
+    check_degree(opt.p, "degree -p");
 
     Mesh mesh;
     Case cs;
@@ -70,8 +72,8 @@ int main(int argc, char** argv) {
     rep["timings"]["assemble"] = r.t_assemble;
     rep["timings"]["solve"] = r.t_solve;
     rep["timings"]["postprocess"] = r.t_postprocess;
-    tool.log("solved with " + r.solve.solver + " in " + std::to_string(r.t_solve) + " s; L2 error " +
-             std::to_string(r.l2_error));
+    tool.log("solved with " + r.solve.solver + " in " + sci(r.t_solve) + " s; L2 error " +
+             sci(r.l2_error));
 
     {
       auto ph = tool.phase("write");

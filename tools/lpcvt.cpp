@@ -6,7 +6,9 @@
 #include <memory>
 #include <string>
 
+#include "cli/parse_errors.hpp"
 #include "cli/tool.hpp"
+#include "core/format.hpp"
 #include "core/atomic_file.hpp"
 #include "io/msh.hpp"
 #include "lpcvt/energy.hpp"
@@ -54,7 +56,7 @@ int main(int argc, char** argv) {
                  "Metric scale: M_eff = scale * M (default 0.25 for quadapt frames, 0.5 with "
                  "--convention philip, 1 for --analytic)");
   app.add_option("--convention", convention,
-                 "Size convention of FRAME: quadapt (d = det M / 4, DESIGN.md) or philip (the thesis's "
+                 "Size convention of FRAME: quadapt (d = det M / 4, docs/design.md) or philip (the thesis's "
                  "files: full-edge sizes, d = det M, so M_quadapt = 2 M_philip)")
       ->capture_default_str()
       ->check(CLI::IsMember({"quadapt", "philip"}));
@@ -77,13 +79,13 @@ int main(int argc, char** argv) {
                  "coarser sites), density (random, by the metric's density) or uniform (random; --analytic's)")
       ->check(CLI::IsMember({"lattice", "multilevel", "density", "uniform"}));
   app.add_option("--coarse-points", opt.coarse_points, "Multilevel: interior points of the coarsest level, at least")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(PositiveValue);
   double complexity = 0;
   int degree = -1;
   app.add_option("--complexity", complexity,
                  "Target DOFs: rescale the frame uniformly so that the final all-quad mesh has "
                  "complexity/(degree+1)^2 cells (PHiLiP's frame files are normalised and carry no size)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue);
   app.add_option("--degree", degree, "DG degree P for --complexity (cells = complexity/(P+1)^2)")->check(CLI::Range(0, 20));
   int smooth = 0;
   double gradation = 0;
@@ -106,10 +108,10 @@ int main(int argc, char** argv) {
   bool no_exact = false;
   app.add_flag("--no-exact-count", no_exact,
                "Do not set the point count to the requested one (multilevel levels, before the final minimisation)");
-  app.add_option("--max-cycles", opt.max_cycles, "Split/merge cycles at most")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--max-cycles", opt.max_cycles, "Split/merge cycles at most")->capture_default_str()->check(PositiveValue);
   auto* omaxit = app.add_option("--max-iterations", opt.lbfgs.max_iterations,
                                  "L-BFGS iterations per minimisation at most (default 100 for frames, 500 with --analytic)")
-                      ->check(CLI::PositiveNumber);
+                      ->check(PositiveValue);
   double gamma = -1;
   app.add_option("--weight", gamma,
                  "Energy weight |det M|^gamma (energy.hpp): 1 (frames' default) gives one point per unit metric "
@@ -194,16 +196,16 @@ int main(int argc, char** argv) {
                                         {"max_neighbour_size_ratio_before", f.max_ratio_before},
                                         {"max_neighbour_size_ratio_after", f.max_ratio_after}};
           tool.log("metric smoothed (" + std::to_string(smooth) + " log-Euclidean passes): largest neighbour size ratio " +
-                   std::to_string(f.max_ratio_before) + " -> " + std::to_string(f.max_ratio_after));
+                   sci(f.max_ratio_before) + " -> " + sci(f.max_ratio_after));
         }
         if (gradation > 0) {
           FilterReport f = grade_metric(*bg, gradation);
           tool.report()["gradation"] = {{"growth", gradation}, {"updates", f.passes}, {"cells_changed", f.cells_changed}, {"rescale", f.rescale},
                                         {"max_neighbour_size_ratio_before", f.max_ratio_before},
                                         {"max_neighbour_size_ratio_after", f.max_ratio_after}};
-          tool.log("metric graded (growth " + std::to_string(gradation) + " per unit length, " + std::to_string(f.passes) +
-                   " updates): " + std::to_string(f.cells_changed) + " cells refined, largest neighbour size ratio " + std::to_string(f.max_ratio_before) + " -> " +
-                   std::to_string(f.max_ratio_after));
+          tool.log("metric graded (growth " + sci(gradation) + " per unit length, " + std::to_string(f.passes) +
+                   " updates): " + std::to_string(f.cells_changed) + " cells refined, largest neighbour size ratio " + sci(f.max_ratio_before) + " -> " +
+                   sci(f.max_ratio_after));
         }
       }
       // Final all-quad cells the frame asks for: 4 x metric area of M_eff (docs/lpcvt.md, Sizes).
@@ -216,9 +218,9 @@ int main(int argc, char** argv) {
         tool.report()["complexity"] = complexity;
         tool.report()["degree"] = degree;
         tool.report()["metric_rescale"] = f;
-        tool.log("--complexity " + std::to_string(complexity) + " at degree " + std::to_string(degree) + ": " +
-                 std::to_string(target) + " final cells (the frame asks " + std::to_string(frame_cells) +
-                 "): metric scaled by " + std::to_string(f));
+        tool.log("--complexity " + sci(complexity) + " at degree " + std::to_string(degree) + ": " +
+                 sci(target) + " final cells (the frame asks " + sci(frame_cells) +
+                 "): metric scaled by " + sci(f));
       }
       tool.report()["target_cells"] = 4 * bg->metric_area();
       if (cells_per_triangle != 2) *bg = bg->scaled(std::sqrt(2 / cells_per_triangle));
@@ -287,10 +289,10 @@ int main(int argc, char** argv) {
         write_msh(fm, frame_out);
       }
     }
-    tool.log("largest triangle angles (median): " + std::to_string(am.median_largest) + " deg in the metric, " +
-             std::to_string(ap.median_largest) + " deg in physical space; Voronoi edges off the metric axes by " +
-             std::to_string(al.mean_deviation) + " deg, off the principal directions by " +
-             std::to_string(alp.mean_deviation) + " deg (length-weighted means)");
+    tool.log("largest triangle angles (median): " + sci(am.median_largest) + " deg in the metric, " +
+             sci(ap.median_largest) + " deg in physical space; Voronoi edges off the metric axes by " +
+             sci(al.mean_deviation) + " deg, off the principal directions by " +
+             sci(alp.mean_deviation) + " deg (length-weighted means)");
     if (!r.converged) {
       tool.log("warning: not converged (" + r.stop + "); the mesh is valid but the points are not optimal");
       if (strict) throw PartialFailure("not converged: " + r.stop + " (mesh written)");

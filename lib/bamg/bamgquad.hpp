@@ -12,7 +12,7 @@ namespace quadapt {
 
 struct BamgQuadOptions {
   double edge_factor = 0;      ///< BAMG unit edge in frame half-axes; 0 = default_bamg_edge_factor()
-  /// M is multiplied by this first: 1 for quadapt frames (d = |det M|/4, DESIGN.md §4), 2 for
+  /// M is multiplied by this first: 1 for quadapt frames (d = |det M|/4, docs/design.md §4), 2 for
   /// PHiLiP's files, whose sizes are full edges (d = |det M|; the same as lpcvt --convention philip).
   double frame_scale = 1;
   bool log_euclidean = true;   ///< vertex metric: log-Euclidean (else arithmetic) mean of the cells'

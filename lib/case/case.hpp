@@ -1,6 +1,6 @@
 #pragma once
 // A test case of the advection-diffusion solver: PDE constants, manufactured solution,
-// boundary conditions and functional (DESIGN.md section 3; thesis eq. 6.2).
+// boundary conditions and functional (docs/design.md §3; thesis eq. 6.2).
 //
 // The PDE, with the thesis's sign convention (eq. 6.2):
 //     div(D grad u) - c . grad u = S      in the domain,

@@ -1,4 +1,5 @@
 #include "dg/discretization.hpp"
+#include "dg/degree.hpp"
 
 #include <omp.h>
 
@@ -84,7 +85,7 @@ struct DGDiscretization::Impl {
 
 DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, const DGOptions& opt)
     : mesh_(mesh), cs_(cs), p_(p), nb_((p + 1) * (p + 1)), opt_(opt) {
-  if (p < 1 || p > 8) throw InputError("degree p = " + std::to_string(p) + " is out of range (1..8)");
+  check_degree(p, "degree p =");
   if (mesh.num_cells() == 0) throw InputError("mesh: no cells");
   if (!mesh.all_quads())
     throw InputError("mesh: " + std::to_string(mesh.num_triangles()) +

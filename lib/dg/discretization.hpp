@@ -1,6 +1,6 @@
 #pragma once
 // The DG discretisation of steady advection-diffusion on all-quad meshes, conforming or with
-// 2:1 hanging nodes (thesis section 2.1, eq. 2.9; PDE eq. 6.2; DESIGN.md section 4).
+// 2:1 hanging nodes (thesis section 2.1, eq. 2.9; PDE eq. 6.2; docs/design.md §4).
 //
 // PDE (thesis sign convention, eq. 6.2):  div(D grad u) - c . grad u = S.  We discretise the
 // equivalent well-posed form  -div(D grad u) + c . grad u = f  with  f = -S.

@@ -1,7 +1,7 @@
 #pragma once
 // The one adapter around the Gmsh SDK (gmsh.h, API 4.8): initialisation by RAII and a call
 // wrapper that turns Gmsh failures into quadapt::ExternalError. Every use of the SDK in
-// quadapt goes through these two (see ../shared/LIBRARY-FACTS.md for the SDK's quirks).
+// quadapt goes through these two (see docs/design.md §6 for the SDK's quirks).
 //
 //   GmshSession gmsh;                                   // initialise (nested sessions share it)
 //   gmsh_call("open " + path, [&] { gmsh::open(path); });

@@ -1,5 +1,5 @@
 #pragma once
-// Gmsh MSH files <-> Mesh (DESIGN.md section 3).
+// Gmsh MSH files <-> Mesh (docs/design.md §3).
 //
 // Reading: MSH 4.1 (ASCII and binary) and MSH 2.2 (ASCII and binary). 2D meshes of 3-node
 // triangles and 4-node quads; 2-node lines become boundary edges of their physical group (by
@@ -32,7 +32,8 @@ Mesh read_msh(const std::string& path);
 /// read_msh, then validate_mesh(mesh, path, v): how a tool takes an input mesh.
 Mesh read_valid_msh(const std::string& path, const ValidateOptions& v = {});
 
-/// Writes MSH 4.1 ASCII atomically (temporary file + rename).
+/// Writes MSH 4.1 ASCII atomically (temporary file + rename), and PATH.opt beside it when the
+/// mesh has a DG field, so Gmsh displays it smoothly (io/gmsh_options.hpp).
 void write_msh(const Mesh& mesh, const std::string& path);
 
 /// Stream variants (path only used in messages).

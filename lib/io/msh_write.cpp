@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/atomic_file.hpp"
+#include "io/gmsh_options.hpp"
 #include "core/error.hpp"
 #include "io/gll_scheme.hpp"
 #include "io/msh.hpp"
@@ -229,6 +230,7 @@ void write_msh(const Mesh& m, std::ostream& os) {
 void write_msh(const Mesh& mesh, const std::string& path) {
   check_writable(mesh);
   atomic_write(path, [&](std::ostream& os) { write_msh(mesh, os); });
+  write_gmsh_options(mesh, path);
 }
 
 }  // namespace quadapt

@@ -2,12 +2,12 @@
 // The metric field M(y) of the L_p-CVT generator on its background mesh (thesis §4.1).
 //
 // The background mesh covers the domain Omega. Each of its cells carries the frame as
-// M = V^-1 (CellField "Vinv", 9 components, row-major 3x3, M in the upper-left 2x2; DESIGN.md
+// M = V^-1 (CellField "Vinv", 9 components, row-major 3x3, M in the upper-left 2x2; docs/design.md
 // §3), so M is piecewise constant; or the metric is an analytic function M(y) (validation
 // mode, thesis eq. 6.1). The generator works with the EFFECTIVE metric  M_eff = scale * M :
 // a segment u has metric length |M_eff u|, and the L_p-CVT places points one metric unit apart.
 //
-// Sizes (DESIGN.md §4): V = R(theta) diag(h1, h2); the frame's representative parallelogram
+// Sizes (docs/design.md §4): V = R(theta) diag(h1, h2); the frame's representative parallelogram
 // spans +-v, +-w, so the FINAL all-quad mesh should have edges 2 h1 x 2 h2. The final mesh is
 // made by recombining lpcvt's triangles into quads (edges = point spacing) and splitting every
 // quad into four (halving edges), so the points must be 4 h1 x 4 h2 apart: scale = 1/4, i.e.

@@ -1,7 +1,7 @@
 #pragma once
 // Mesh quality figures reported by the meshquality tool (docs/meshquality.md), in physical
 // space and, given a frame (background mesh with per-cell Vinv, M = V^-1 in the upper-left 2x2
-// of the row-major 3x3; DESIGN.md sections 3-4), in the frame's metric space.
+// of the row-major 3x3; docs/design.md §3-4), in the frame's metric space.
 //
 // Metric space: each cell's vertices are mapped by the M of the background cell that contains
 // the cell's centroid (point location: quality/locate.hpp; a centroid outside the background

@@ -1,5 +1,5 @@
 #pragma once
-// The frame written for the mesh generators (thesis eqs. 3.11-3.13, DESIGN.md §3).
+// The frame written for the mesh generators (thesis eqs. 3.11-3.13, docs/design.md §3).
 //
 // V = R(θ) diag(h1, h2), h1 = h sqrt(ρ), h2 = h / sqrt(ρ): columns v (long axis, along θ) and w.
 // The target element spans ±v, ±w (edges 2h1 x 2h2, density d = 1/(4h^2), eq. 5.1).

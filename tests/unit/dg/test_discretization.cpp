@@ -139,7 +139,7 @@ TEST_CASE("block assembly equals the compressed-column assembly; block matrix op
 
 TEST_CASE("functional J = int u^2 over a boundary: exact value, convergence, derivative") {
   // S-shock (thesis eq. 6.4) on 16x16: J(u_exact) over x = 1 is 0.562499959215865
-  // (PHiLiP's reference value, shared/reference/philip-fixtures/README.md).
+  // (PHiLiP's reference value, tests/fixtures/philip/README.md).
   Case ss = parse_case(R"J({"exact": "0.75*tanh(4*sin(10*y-5) - 24*x + 12)", "advection": [1.1, "-pi/e"],
                             "diffusion": [["0.01*pi/e*12", "0.01*pi/e*3"], ["0.01*pi/e*3", "0.01*pi/e*20"]],
                             "functional": {"boundary": "right"}})J",

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::string kGolden = std::string(QUADAPT_SOURCE_DIR) + "/tests/golden/io/";
-const std::string kPhilip = std::string(QUADAPT_SHARED_DIR) + "/reference/philip-fixtures/";
+const std::string kPhilip = std::string(QUADAPT_FIXTURES_DIR) + "/";
 
 /// A perturbed grid carrying every field kind, with awkward numbers (1/3, -0, subnormals, huge).
 Mesh mesh_with_every_field(int n, unsigned seed) {
