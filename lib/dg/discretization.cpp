@@ -64,24 +64,7 @@ struct QuadGeo {
 };
 
 /// Reference coordinates of edge parameter s (0 at v[e], 1 at v[e+1]) on local edge e.
-inline void edge_point(int e, double s, double& xi, double& eta) {
-  switch (e) {
-    case 0: xi = -1 + 2 * s; eta = -1; break;
-    case 1: xi = 1; eta = -1 + 2 * s; break;
-    case 2: xi = 1 - 2 * s; eta = 1; break;
-    default: xi = -1; eta = 1 - 2 * s; break;
-  }
-}
-
-/// d(xi, eta)/ds along local edge e (s in [0, 1] from v[e] to v[e+1]).
-inline Vec2 edge_direction(int e) {
-  switch (e) {
-    case 0: return Vec2(2, 0);
-    case 1: return Vec2(0, 2);
-    case 2: return Vec2(-2, 0);
-    default: return Vec2(0, -2);
-  }
-}
+inline void edge_point(int e, double s, double& xi, double& eta) { edge_reference_point(e, s, xi, eta); }
 
 /// Geometry of face f at parameter t in [0, 1] (from a to b), on side 0's map G: the point x,
 /// side 0's outward unit normal n and the arc length per unit t. Straight faces: the segment.
@@ -92,17 +75,7 @@ void face_geometry(const QuadGeo& G, const Face& f, double t, Vec2& x, Vec2& n, 
     dsdt = f.length;
     return;
   }
-  const int e = f.local_edge[0];
-  double xi, eta;
-  edge_point(e, f.s_a[0] + t * (f.s_b[0] - f.s_a[0]), xi, eta);
-  Vec2 t1, t2;
-  G.jac(xi, eta, t1, t2);
-  const Vec2 dir = edge_direction(e);
-  const Vec2 T = t1 * dir.x() + t2 * dir.y();  // dx/ds
-  const double len = T.norm();
-  x = G.map(xi, eta);
-  n = Vec2(T.y(), -T.x()) / len;
-  dsdt = len * (f.s_b[0] - f.s_a[0]);
+  dsdt = edge_geometry(*G.curved, f.local_edge[0], f.s_a[0] + t * (f.s_b[0] - f.s_a[0]), x, n) * (f.s_b[0] - f.s_a[0]);
 }
 
 }  // namespace
@@ -191,13 +164,9 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
     for (int e = 0; e < 4; ++e) {
       double len = 0;
       if (mesh.is_curved()) {
-        const Vec2 dir = edge_direction(e);
         for (int q = 0; q < I.nq; ++q) {
-          double xi, eta;
-          edge_point(e, 0.5 * (I.gv.x[q] + 1), xi, eta);
-          Vec2 t1, t2;
-          I.geo[c].jac(xi, eta, t1, t2);
-          len += 0.5 * I.gv.w[q] * (t1 * dir.x() + t2 * dir.y()).norm();
+          Vec2 x, n;
+          len += 0.5 * I.gv.w[q] * edge_geometry(*I.geo[c].curved, e, 0.5 * (I.gv.x[q] + 1), x, n);
         }
       } else {
         len = (mesh.nodes[cell.v[(e + 1) % 4]] - mesh.nodes[cell.v[e]]).norm();

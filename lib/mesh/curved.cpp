@@ -24,8 +24,8 @@ void equispaced_lagrange(int q, double x, double* l, double* dl) {
   }
 }
 
-int gmsh_quad_type(int q) { return q == 1 ? 3 : q == 2 ? 10 : q == 3 ? 36 : -1; }
-int gmsh_line_type(int q) { return q == 1 ? 1 : q == 2 ? 8 : q == 3 ? 26 : -1; }
+int gmsh_quad_type(int q) { return q == 1 ? 3 : q == 2 ? 10 : q == 3 ? 36 : q == 4 ? 37 : -1; }
+int gmsh_line_type(int q) { return q == 1 ? 1 : q == 2 ? 8 : q == 3 ? 26 : q == 4 ? 27 : -1; }
 
 std::vector<int> edge_control_points(int q, int e) {
   const int n1 = q + 1;
@@ -44,21 +44,24 @@ std::vector<int> edge_control_points(int q, int e) {
 }
 
 std::vector<int> gmsh_quad_node_order(int q) {
-  if (q < 1 || q > 3) throw Error("gmsh_quad_node_order: order " + std::to_string(q) + " not supported");
+  if (q < 1 || q > kMaxGeometricOrder)
+    throw Error("gmsh_quad_node_order: order " + std::to_string(q) + " not supported");
   const int n1 = q + 1;
-  std::vector<int> perm = {0, q, q + n1 * q, n1 * q};
-  for (int e = 0; e < 4; ++e) {
-    std::vector<int> ed = edge_control_points(q, e);
-    for (int k = 1; k < q; ++k) perm.push_back(ed[k]);
-  }
-  // Interior: (q-1)^2 points; q <= 3 so the interior is a single point (q = 2) or a 2x2
-  // block ordered like a quad's corners (q = 3).
-  if (q == 2) perm.push_back(1 + n1);
-  if (q == 3) {
-    perm.push_back(1 + n1 * 1);
-    perm.push_back(2 + n1 * 1);
-    perm.push_back(2 + n1 * 2);
-    perm.push_back(1 + n1 * 2);
+  std::vector<int> perm;
+  // Gmsh orders a quad's nodes recursively: corners, edge interiors (in edge direction), then
+  // the interior block [lo, hi]^2 as a quad of order hi - lo.
+  for (int lo = 0, hi = q; lo <= hi; ++lo, --hi) {
+    if (lo == hi) {
+      perm.push_back(lo + n1 * lo);
+      break;
+    }
+    const int ci[4] = {lo, hi, hi, lo}, cj[4] = {lo, lo, hi, hi};
+    for (int k = 0; k < 4; ++k) perm.push_back(ci[k] + n1 * cj[k]);
+    for (int e = 0; e < 4; ++e) {
+      const int di = ci[(e + 1) % 4] > ci[e] ? 1 : ci[(e + 1) % 4] < ci[e] ? -1 : 0;
+      const int dj = cj[(e + 1) % 4] > cj[e] ? 1 : cj[(e + 1) % 4] < cj[e] ? -1 : 0;
+      for (int k = 1; k < hi - lo; ++k) perm.push_back(ci[e] + k * di + n1 * (cj[e] + k * dj));
+    }
   }
   return perm;
 }
@@ -77,7 +80,7 @@ Vec2 CellMap::map(double xi, double eta) const {
     const double n2 = 0.25 * (1 + xi) * (1 + eta), n3 = 0.25 * (1 - xi) * (1 + eta);
     return corner_[0] * n0 + corner_[1] * n1 + corner_[2] * n2 + corner_[3] * n3;
   }
-  double lx[4], dlx[4], ly[4], dly[4];
+  double lx[kMaxGeometricOrder + 1], dlx[kMaxGeometricOrder + 1], ly[kMaxGeometricOrder + 1], dly[kMaxGeometricOrder + 1];
   equispaced_lagrange(q_, xi, lx, dlx);
   equispaced_lagrange(q_, eta, ly, dly);
   Vec2 x = Vec2::Zero();
@@ -93,7 +96,7 @@ double CellMap::jacobian(double xi, double eta, Vec2& t1, Vec2& t2) const {
     t1 = 0.25 * ((p1 - p0) * (1 - eta) + (p2 - p3) * (1 + eta));
     t2 = 0.25 * ((p3 - p0) * (1 - xi) + (p2 - p1) * (1 + xi));
   } else {
-    double lx[4], dlx[4], ly[4], dly[4];
+    double lx[kMaxGeometricOrder + 1], dlx[kMaxGeometricOrder + 1], ly[kMaxGeometricOrder + 1], dly[kMaxGeometricOrder + 1];
     equispaced_lagrange(q_, xi, lx, dlx);
     equispaced_lagrange(q_, eta, ly, dly);
     t1.setZero();
@@ -109,8 +112,31 @@ double CellMap::jacobian(double xi, double eta, Vec2& t1, Vec2& t2) const {
   return t1.x() * t2.y() - t1.y() * t2.x();
 }
 
+void edge_reference_point(int e, double s, double& xi, double& eta) {
+  switch (e) {
+    case 0: xi = -1 + 2 * s; eta = -1; break;
+    case 1: xi = 1; eta = -1 + 2 * s; break;
+    case 2: xi = 1 - 2 * s; eta = 1; break;
+    default: xi = -1; eta = 1 - 2 * s; break;
+  }
+}
+
+double edge_geometry(const CellMap& G, int e, double s, Vec2& x, Vec2& n) {
+  double xi, eta;
+  edge_reference_point(e, s, xi, eta);
+  Vec2 t1, t2;
+  G.jacobian(xi, eta, t1, t2);
+  static const double dxi[4] = {2, 0, -2, 0}, deta[4] = {0, 2, 0, -2};
+  const Vec2 T = t1 * dxi[e] + t2 * deta[e];
+  const double len = T.norm();
+  x = G.map(xi, eta);
+  n = Vec2(T.y(), -T.x()) / len;
+  return len;
+}
+
 void elevate_geometric_order(Mesh& m, int q) {
-  if (q < 1 || q > 3) throw Error("elevate_geometric_order: order " + std::to_string(q) + " not supported (1..3)");
+  if (q < 1 || q > kMaxGeometricOrder)
+    throw Error("elevate_geometric_order: order " + std::to_string(q) + " not supported (1.." + std::to_string(kMaxGeometricOrder) + ")");
   if (m.is_curved()) throw Error("elevate_geometric_order: the mesh is already curved");
   if (!m.all_quads()) throw Error("elevate_geometric_order: curved cells must be quads");
   if (q == 1) return;

@@ -1,7 +1,7 @@
 #pragma once
-// Curved (high-order) quads: the Lagrange map of geometric order q (q = 1, 2, 3) of a cell, and
-// the correspondence with Gmsh's node ordering (MSH types 3, 10, 36 for quads; 1, 8, 26 for
-// lines).
+// Curved (high-order) quads: the Lagrange map of geometric order q (q = 1..4) of a cell, and
+// the correspondence with Gmsh's node ordering (MSH types 3, 10, 36, 37 for quads; 1, 8, 26, 27
+// for lines).
 //
 // Convention: a curved cell's map is x(xi, eta) = sum_{i,j} X_{i + (q+1) j} l_i(xi) l_j(eta)
 // on the reference square [-1,1]^2, l_i the degree-q Lagrange polynomials through the
@@ -13,9 +13,9 @@
 //
 // Gmsh's ordering (documented in the Gmsh reference manual, "Node ordering"): corners 0..3;
 // then for each edge 0-1, 1-2, 2-3, 3-0 its q-1 interior nodes in the edge's direction; then
-// the (q-1)^2 interior nodes, recursively ordered like a quad (for q = 3: (-1/3,-1/3),
-// (1/3,-1/3), (1/3,1/3), (-1/3,1/3)). A line of order q: end points 0, 1, then its interior
-// nodes from node 0 to node 1.
+// the (q-1)^2 interior nodes, recursively ordered like a quad of order q-2 (for q = 3:
+// (-1/3,-1/3), (1/3,-1/3), (1/3,1/3), (-1/3,1/3)). A line of order q: end points 0, 1, then
+// its interior nodes from node 0 to node 1.
 #include <Eigen/Core>
 #include <vector>
 
@@ -23,13 +23,16 @@
 
 namespace quadapt {
 
+/// Highest geometric order supported (Gmsh's 25-node quadrangle).
+constexpr int kMaxGeometricOrder = 4;
+
 /// Values l[0..q] and derivatives dl[0..q] at x of the Lagrange polynomials through the q+1
 /// equispaced points of [-1, 1] (q >= 1).
 void equispaced_lagrange(int q, double x, double* l, double* dl);
 
 /// perm[k] = lexicographic index (i + (q+1) j) of Gmsh's k-th node of a quad of order q.
 std::vector<int> gmsh_quad_node_order(int q);
-/// MSH element type of a quad / line of order q (3, 10, 36 / 1, 8, 26); -1 for other q.
+/// MSH element type of a quad / line of order q (3, 10, 36, 37 / 1, 8, 26, 27); -1 for other q.
 int gmsh_quad_type(int q);
 int gmsh_line_type(int q);
 
@@ -52,6 +55,14 @@ class CellMap {
   const Vec2* X_;      // (q+1)^2 control points (curved) ...
   Vec2 corner_[4];     // ... or the 4 vertices (q = 1)
 };
+
+/// Reference point (xi, eta) of parameter s in [0, 1] along local edge e (s = 0 at v[e], 1 at
+/// v[(e+1) % 4]); d(xi, eta)/ds is (2,0), (0,2), (-2,0), (0,-2) for e = 0..3.
+void edge_reference_point(int e, double s, double& xi, double& eta);
+
+/// Geometry of local edge e of the cell at parameter s: the point x, the outward unit normal n
+/// (the cell is counter-clockwise: n = (T_y, -T_x)/|T| with T = dx/ds) and |dx/ds| (returned).
+double edge_geometry(const CellMap& G, int e, double s, Vec2& x, Vec2& n);
 
 /// Gives every cell of a straight-sided all-quad mesh (q = 1) the control points of order q on
 /// its bilinear map (the same geometry, now with q-order storage). Used to build curved test
