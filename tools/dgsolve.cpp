@@ -7,6 +7,7 @@
 #include "cli/tool.hpp"
 #include "dg/solve.hpp"
 #include "io/msh.hpp"
+#include "mesh/curved.hpp"
 #include "mesh/validate.hpp"
 
 int main(int argc, char** argv) {
@@ -89,6 +90,7 @@ int main(int argc, char** argv) {
     rep["dofs"] = r.dofs;
     rep["hanging_faces"] = r.hanging_faces;
     rep["geometric_order"] = mesh.geometric_order();
+    if (mesh.is_curved()) rep["curved_scaled_jacobian_min"] = min_scaled_jacobian(mesh).min;
     rep["l2_error"] = r.l2_error;
     if (r.has_functional) {
       rep["functional_boundary"] = cs.functional_boundary;

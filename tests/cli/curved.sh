@@ -32,6 +32,8 @@ cmp "$T/back2.msh" "$T/c.msh" || fail "gmsh round trip changed the mesh"
 # --- dgsolve on it; the solution file is curved again
 dgsolve -q "$T/c.msh" -c "$S/examples/cases/annulus.json" -p 3 -o "$T/sol.msh"
 [ "$(json "$T/sol.json" '["geometric_order"]')" = 3 ] || fail "dgsolve report: geometric_order"
+python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert 0.5 < r['curved_scaled_jacobian_min'] <= 1, r" "$T/sol.json" \
+  || fail "dgsolve report: curved_scaled_jacobian_min"
 grep -q '^2 1 36 16$' "$T/sol.msh" || fail "solution mesh not curved"
 
 # --- tools without the curved map refuse it: exit 2, one line naming the file, nothing written
