@@ -188,8 +188,21 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
     for (size_t q = 0; q < nfq; ++q) {
       const size_t k = fi * nfq + q;
       double dsdt;
-      face_geometry(I.geo[f.cell[0]], f, 0.5 * (I.gv.x[q] + 1), I.fx[k], I.fn[k], dsdt);
+      const double t = 0.5 * (I.gv.x[q] + 1);
+      face_geometry(I.geo[f.cell[0]], f, t, I.fx[k], I.fn[k], dsdt);
       I.fw[k] = 0.5 * I.gv.w[q] * dsdt;
+      if (mesh.is_curved() && !f.is_boundary()) {
+        // Both sides must trace the same curve (shared edge nodes): the traces are matched by
+        // the edge parameter.
+        double xi, eta;
+        edge_point(f.local_edge[1], f.s_a[1] + t * (f.s_b[1] - f.s_a[1]), xi, eta);
+        const Vec2 x1 = I.geo[f.cell[1]].map(xi, eta);
+        if ((x1 - I.fx[k]).norm() > 1e-9 * f.length)
+          throw InputError("mesh: cells " + std::to_string(f.cell[0] + 1) + " and " + std::to_string(f.cell[1] + 1) +
+                           " share the edge near (" + std::to_string(I.fx[k].x()) + ", " + std::to_string(I.fx[k].y()) +
+                           ") but their curved edges differ by " + std::to_string((x1 - I.fx[k]).norm()) +
+                           " (the edge's high-order nodes must be shared)");
+      }
     }
   }
 

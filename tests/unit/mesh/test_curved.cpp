@@ -167,3 +167,19 @@ TEST_CASE("curved map: Jacobian positivity — valid disks, a folded cell reject
   Case one = parse_case(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "1"})J", "one.json");
   CHECK_THROWS_AS(DGDiscretization(m, one, 3), InputError);
 }
+
+TEST_CASE("curved map: neighbours whose curved edges differ are refused by the DG") {
+  Mesh m = curved_disk(1, 2);
+  // Cell 4 is the centre square; move the midpoint of its edge 1 (shared with cell 0) in cell 4
+  // only: the two sides no longer trace the same curve.
+  m.curved.points[4 * 9 + 2 + 3 * 1] += Vec2(0.01, 0);
+  Case one = parse_case(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "1"})J", "one.json");
+  try {
+    DGDiscretization dg(m, one, 2);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("share the edge") != std::string::npos);
+  }
+  m.curved.points[4 * 9 + 2 + 3 * 1] -= Vec2(0.01, 0);
+  CHECK_NOTHROW(DGDiscretization(m, one, 2));
+}
