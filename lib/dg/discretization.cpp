@@ -63,9 +63,6 @@ struct QuadGeo {
   }
 };
 
-/// Reference coordinates of edge parameter s (0 at v[e], 1 at v[e+1]) on local edge e.
-inline void edge_point(int e, double s, double& xi, double& eta) { edge_reference_point(e, s, xi, eta); }
-
 /// Geometry of face f at parameter t in [0, 1] (from a to b), on side 0's map G: the point x,
 /// side 0's outward unit normal n and the arc length per unit t. Straight faces: the segment.
 void face_geometry(const QuadGeo& G, const Face& f, double t, Vec2& x, Vec2& n, double& dsdt) {
@@ -195,7 +192,7 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
         // Both sides must trace the same curve (shared edge nodes): the traces are matched by
         // the edge parameter.
         double xi, eta;
-        edge_point(f.local_edge[1], f.s_a[1] + t * (f.s_b[1] - f.s_a[1]), xi, eta);
+        edge_reference_point(f.local_edge[1], f.s_a[1] + t * (f.s_b[1] - f.s_a[1]), xi, eta);
         const Vec2 x1 = I.geo[f.cell[1]].map(xi, eta);
         if ((x1 - I.fx[k]).norm() > 1e-9 * f.length)
           throw InputError("mesh: cells " + std::to_string(f.cell[0] + 1) + " and " + std::to_string(f.cell[1] + 1) +
@@ -354,7 +351,7 @@ void DGDiscretization::assemble_columns(
         double t = 0.5 * (g.x[q] + 1);
         double s = fc.s_a[k] + t * (fc.s_b[k] - fc.s_a[k]);
         double xi, eta;
-        edge_point(e, s, xi, eta);
+        edge_reference_point(e, s, xi, eta);
         lagrange_1d(I.gll, xi, lx.data(), dlx.data());
         lagrange_1d(I.gll, eta, ly.data(), dly.data());
         if (diff) {
@@ -566,7 +563,7 @@ void boundary_trace(const Face& f, const std::vector<double>& gll, double t, dou
   const int n1 = static_cast<int>(gll.size());
   double s = f.s_a[0] + t * (f.s_b[0] - f.s_a[0]);
   double xi, eta;
-  edge_point(f.local_edge[0], s, xi, eta);
+  edge_reference_point(f.local_edge[0], s, xi, eta);
   std::vector<double> lx(n1), dlx(n1), ly(n1), dly(n1);
   lagrange_1d(gll, xi, lx.data(), dlx.data());
   lagrange_1d(gll, eta, ly.data(), dly.data());
