@@ -6,9 +6,7 @@
 // equivalent well-posed form  -div(D grad u) + c . grad u = f  with  f = -S.
 //
 // Space: on every cell K the tensor-product Lagrange polynomials of degree p on Gauss-Lobatto
-// points (dg/basis.hpp), mapped by the cell's map: bilinear for straight-sided quads, the
-// Lagrange map of geometric order q for curved ones (mesh/curved.hpp; isoparametric when q = p,
-// sub-/super-parametric otherwise; conforming curved meshes only). Global dof
+// points (dg/basis.hpp), mapped by the bilinear map of the straight-sided quad. Global dof
 // numbering: dof = K * (p+1)^2 + i + (p+1) j, i.e. the coefficients are the nodal values at the
 // GLL points (xi_i, eta_j) of cell K — exactly the layout of the CellNodeField "u".
 //
@@ -31,8 +29,12 @@
 //     advective flux is upwind with the outside state u_exact (interior trace on outflow).
 // Quadrature: Gauss with p+2 points per direction in cells and on faces (faces are integrated
 // in physical arc length and mapped into each side's reference coordinates, so non-conforming
-// faces are exact for polynomial traces). On curved faces the normal, the arc length and the
-// data points vary along the face (side 0's map).
+// faces are exact for polynomial traces).
+//
+// Curved quads (mesh/curved.hpp): the bilinear map is replaced by the cell's Lagrange map of
+// geometric order q (isoparametric when q = p, sub-/super-parametric otherwise; conforming
+// curved meshes only); on their faces the normal, the arc length and the data points vary
+// along the face (side 0's map).
 //
 // The linear system is A U = b; the residual is R(U) = A U - b and the Jacobian dR/dU = A. The
 // assembly is column-oriented: every cell computes its own block column (its volume block and
