@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
     tool.output(out);
     ValidateOptions opt;
     opt.require = require == "quads" ? CellKind::Quads : require == "triangles" ? CellKind::Triangles : CellKind::Any;
+    opt.allow_curved = true;  // curved quads are converted with their high-order nodes
     Mesh m;
     {
       auto ph = tool.phase("read");
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
     tool.report()["cells"] = m.num_cells();
     tool.report()["quads"] = m.num_quads();
     tool.report()["triangles"] = m.num_triangles();
+    tool.report()["geometric_order"] = m.geometric_order();
     tool.report()["boundary_edges"] = m.boundary.size();
     nlohmann::json fields = nlohmann::json::array();
     for (const auto& f : m.cell_fields) fields.push_back(f.name);

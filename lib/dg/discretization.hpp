@@ -20,14 +20,21 @@
 //   sigma = penalty_factor * p (p+1) * (n^T D n) / h_F,   h_F = min over the two sides of
 //   |K| / |edge of K|  (the cell's height normal to the face; PHiLiP's factor 20 by default).
 // Boundary faces:
-//   Dirichlet (the case names the boundary): the outside state is g = u_exact, i.e.
+//   Dirichlet (the case names the boundary): the outside state is g = the case's data
+//     expression for that boundary, else u_exact, i.e.
 //     int (c.n) (u if c.n >= 0 else g) v  -  int (D grad u.n v + D grad v.n (u - g))
 //     + int sigma (u - g) v;  with D = 0 only the inflow data (c.n < 0) acts.
-//   Natural (not named): the diffusive flux D grad u_exact . n is given (Neumann data) and the
+//   Natural (not named): the diffusive flux is given (the case's "neumann" expression, else
+//     D grad u_exact . n) and the
 //     advective flux is upwind with the outside state u_exact (interior trace on outflow).
 // Quadrature: Gauss with p+2 points per direction in cells and on faces (faces are integrated
 // in physical arc length and mapped into each side's reference coordinates, so non-conforming
 // faces are exact for polynomial traces).
+//
+// Curved quads (mesh/curved.hpp): the bilinear map is replaced by the cell's Lagrange map of
+// geometric order q (isoparametric when q = p, sub-/super-parametric otherwise; conforming
+// curved meshes only); on their faces the normal, the arc length and the data points vary
+// along the face (side 0's map).
 //
 // The linear system is A U = b; the residual is R(U) = A U - b and the Jacobian dR/dU = A. The
 // assembly is column-oriented: every cell computes its own block column (its volume block and

@@ -95,7 +95,7 @@ def read_msh(path):
         i += 1
         return toks
 
-    nper = {1: 2, 2: 3, 3: 4, 15: 1, 4: 4, 5: 8, 8: 3, 9: 6, 10: 9}
+    nper = {1: 2, 2: 3, 3: 4, 15: 1, 4: 4, 5: 8, 8: 3, 9: 6, 10: 9, 26: 4, 27: 5, 36: 16, 37: 25}
     while i < len(lines):
         line = lines[i].strip()
         i += 1
