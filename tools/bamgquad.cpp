@@ -4,7 +4,9 @@
 
 #include "bamg/bamgquad.hpp"
 #include "bamg/frame_metric.hpp"
+#include "cli/parse_errors.hpp"
 #include "cli/tool.hpp"
+#include "core/format.hpp"
 #include "io/msh.hpp"
 #include "mesh/validate.hpp"
 #include "quad/report.hpp"
@@ -34,7 +36,7 @@ int main(int argc, char** argv) {
   app.add_option("--edge-factor", opt.edge_factor,
                  "BAMG's unit edge in frame half-axes (default sqrt(32/sqrt(3)) = 4.2985; 4 = 'twice the "
                  "final edge', which gives ~15% more cells)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue);
   std::string convention = "auto";
   app.add_option("--convention", convention,
                  "Size convention of FRAME: auto (what the file states; no statement = philip), quadapt (target "
@@ -45,22 +47,22 @@ int main(int argc, char** argv) {
   app.add_option("--gradation", opt.ffbamg.gradation,
                  "BAMG metric smoothing: bound on the size ratio between neighbours (ffbamg -ratio; 0 = none)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeValue);
   app.add_flag("--no-split-boundary-edges", no_split_edges,
                "Do not split interior edges joining two boundary nodes (ffbamg -splitpbedge is the default)");
   app.add_option("--max-vertices", opt.ffbamg.max_vertices, "BAMG's vertex limit (ffbamg -nbv)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue);
   app.add_option("--runs", opt.max_runs,
                  "Complexity calibration: at most this many BAMG+Blossom runs, the metric rescaled by "
                  "target/cells after each run that misses the target by more than --calibration-tolerance "
                  "(1 = no calibration)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue);
   app.add_option("--calibration-tolerance", opt.calibration_tolerance,
                  "Relative miss of the target cell count accepted without another run")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeValue);
   app.add_flag("--pairing", pairing, "Blossom: use only the matching (see recombine --help)");
 
   return tool.run(argc, argv, [&] {
@@ -102,12 +104,12 @@ int main(int argc, char** argv) {
     for (auto it = rj.begin(); it != rj.end(); ++it)
       if (it.key() != "cells") rep[it.key()] = it.value();
     rep["stretch"] = to_json(stretch_summary(q));
-    tool.log("target " + std::to_string(st.target_complexity) + " cells, BAMG " + std::to_string(st.bamg_triangles) +
+    tool.log("target " + sci(st.target_complexity) + " cells, BAMG " + std::to_string(st.bamg_triangles) +
              " triangles -> " + std::to_string(st.recombine.blossom.quads) + " quads + " +
              std::to_string(st.recombine.blossom.triangles) + " triangles -> " + std::to_string(st.cells) +
-             " quads (ratio " + std::to_string(st.complexity_ratio) + "), min angle " +
-             std::to_string(st.recombine.quality.min_angle_deg) + " deg, min scaled Jacobian " +
-             std::to_string(st.recombine.quality.min_scaled_jacobian));
+             " quads (ratio " + sci(st.complexity_ratio) + "), min angle " +
+             sci(st.recombine.quality.min_angle_deg) + " deg, min scaled Jacobian " +
+             sci(st.recombine.quality.min_scaled_jacobian));
     {
       auto ph = tool.phase("write");
       write_msh(q, out);

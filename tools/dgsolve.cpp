@@ -5,19 +5,23 @@
 
 #include "case/case.hpp"
 #include "cli/tool.hpp"
+#include "dg/degree.hpp"
+#include "core/format.hpp"
 #include "dg/solve.hpp"
 #include "io/msh.hpp"
+#include "mesh/curved.hpp"
 #include "mesh/validate.hpp"
 
 int main(int argc, char** argv) {
   using namespace quadapt;
   Tool tool("dgsolve", "High-order DG solution of steady advection-diffusion on an all-quad mesh",
             "Solves div(D grad u) - c . grad u = S (thesis eq. 6.2) on MESH (straight-sided quads, conforming "
-            "or with 2:1 hanging nodes) with the discontinuous Galerkin method of thesis eq. 2.9: tensor "
+            "or with 2:1 hanging nodes, or conforming curved quads of geometric order 2..4: Gmsh's 9-, 16- and "
+            "25-node quadrangles, integrated on their curved map) with the discontinuous Galerkin method of thesis eq. 2.9: tensor "
             "Lagrange basis of degree P on Gauss-Lobatto points, upwind advective flux, symmetric interior "
-            "penalty (factor 20 p(p+1)/h, n^T D n) for the full diffusion tensor, weak Dirichlet data from "
-            "the exact solution on the boundaries CASE names (others: diffusive flux of the exact solution, "
-            "upwind advection). CASE (JSON, docs/cases.md) gives D, c, the exact solution u(x, y) as an "
+            "penalty (factor 20 p(p+1)/h, n^T D n) for the full diffusion tensor, weak Dirichlet data (CASE's "
+            "expressions, else the exact solution) on the boundaries CASE names (others: Neumann data, CASE's or "
+            "the exact solution's diffusive flux, upwind advection). CASE (JSON, docs/cases.md) gives D, c, the exact solution u(x, y) as an "
             "expression (the source S is its exact symbolic derivative), the Dirichlet boundaries and the "
             "functional J = int over a boundary of u^2. Output: SOL = MESH with the DG field 'u' (the "
             "(p+1)^2 GLL nodal values per cell; Gmsh shows it as a high-order field) and the report "
@@ -32,7 +36,7 @@ int main(int argc, char** argv) {
   app.add_option("-c,--case", case_path, "Case file (.json): D, c, exact solution, boundaries, functional")
       ->required()
       ->check(CLI::ExistingFile);
-  app.add_option("-p,--degree", opt.p, "Polynomial degree P (" + degree_range() + ")")->required();
+  app.add_option("-p,--degree", opt.p, "Polynomial degree P (" + degree_range_text() + ")")->required();
   app.add_option("-o,--output", out, "Output mesh with the field 'u' (.msh); report beside it as .json")
       ->required();
   app.add_option("--solver", solver,
@@ -52,14 +56,15 @@ int main(int argc, char** argv) {
     tool.input(case_path);
     tool.output(out);
     opt.solver.kind = parse_linear_solver(solver);
-    if (opt.p < kMinDegree || opt.p > kMaxDegree)
-      throw InputError("", "degree -p " + std::to_string(opt.p) + " is out of range (" + degree_range() + ")");
+    check_degree(opt.p, "degree -p");
 
     Mesh mesh;
     Case cs;
     {
       auto ph = tool.phase("read");
-      mesh = read_valid_msh(in, ValidateOptions::cells(CellKind::Quads));
+      ValidateOptions v = ValidateOptions::cells(CellKind::Quads);
+      v.allow_curved = true;
+      mesh = read_valid_msh(in, v);
       cs = load_case(case_path);
       check_case_boundaries(cs, mesh);
     }
@@ -71,8 +76,8 @@ int main(int argc, char** argv) {
     rep["timings"]["assemble"] = r.t_assemble;
     rep["timings"]["solve"] = r.t_solve;
     rep["timings"]["postprocess"] = r.t_postprocess;
-    tool.log("solved with " + r.solve.solver + " in " + std::to_string(r.t_solve) + " s; L2 error " +
-             std::to_string(r.l2_error));
+    tool.log("solved with " + r.solve.solver + " in " + sci(r.t_solve) + " s; L2 error " +
+             sci(r.l2_error));
 
     {
       auto ph = tool.phase("write");
@@ -86,6 +91,8 @@ int main(int argc, char** argv) {
     rep["p"] = r.p;
     rep["dofs"] = r.dofs;
     rep["hanging_faces"] = r.hanging_faces;
+    rep["geometric_order"] = mesh.geometric_order();
+    if (mesh.is_curved()) rep["curved_scaled_jacobian_min"] = min_scaled_jacobian(mesh).min;
     rep["l2_error"] = r.l2_error;
     if (r.has_functional) {
       rep["functional_boundary"] = cs.functional_boundary;

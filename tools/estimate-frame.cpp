@@ -1,11 +1,12 @@
 // estimate-frame: per-cell optimal frame shape and error constant from a DG solution
-// (thesis §5.2, eqs. 5.8-5.16; DESIGN.md §4). See docs/estimate-frame.md.
+// (thesis §5.2, eqs. 5.8-5.16; docs/design.md §4). See docs/estimate-frame.md.
 #include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "case/expression.hpp"
 #include "cli/tool.hpp"
+#include "core/format.hpp"
 #include "estimate/interpolate.hpp"
 #include "estimate/estimate_frame.hpp"
 #include "io/msh.hpp"
@@ -100,7 +101,7 @@ int main(int argc, char** argv) {
     rep["rho_max"] = rho.back();
     rep["model_error_at_current_sizes"] = std::pow(bsum, 1 / opt.q);
     tool.log(std::to_string(nc) + " cells, p = " + std::to_string(r.p) + ", median anisotropy " +
-             std::to_string(rho[rho.size() / 2]) + ", " + std::to_string(flat) + " cells without (p+1)-th derivative");
+             sci(rho[rho.size() / 2]) + ", " + std::to_string(flat) + " cells without (p+1)-th derivative");
     {
       auto ph = tool.phase("write");
       write_msh(shape, out);

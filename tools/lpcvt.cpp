@@ -4,9 +4,10 @@
 #include <cstring>
 #include <string>
 
+#include "cli/parse_errors.hpp"
 #include "cli/tool.hpp"
 #include "core/atomic_file.hpp"
-#include "dg/discretization.hpp"
+#include "dg/degree.hpp"
 #include "io/msh.hpp"
 #include "lpcvt/run.hpp"
 
@@ -48,13 +49,16 @@ int main(int argc, char** argv) {
   app.add_option("--cells", cells_kind, "Voronoi cells of the energy: metric (frames' default: distances in each "
                  "background cell's metric; docs/lpcvt.md) or euclidean (the thesis's; --analytic's default)")
       ->check(CLI::IsMember({"metric", "euclidean"}));
+  app.add_option("--cell-anisotropy", job.cell_anisotropy, "With --cells metric: the cells' anisotropy is the metric's "
+                 "to this power (1: the metric's own cells; 0: Euclidean; docs/lpcvt.md)")
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   app.add_option("--init", init, "Initial points: lattice (frames' default: frame-aligned, grown from one seed), "
                  "multilevel (coarse to fine), density (random by the metric) or uniform (random; --analytic's)")
       ->check(CLI::IsMember({"lattice", "multilevel", "density", "uniform"}));
   app.add_option("--coarse-points", opt.coarse_points, "Multilevel: interior points of the coarsest level, at least")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(PositiveValue);
   app.add_option("--complexity", job.complexity, "Target DOFs: the frame rescaled to complexity/(degree+1)^2 cells")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveValue);
   app.add_option("--degree", job.degree, "DG degree P for --complexity (cells = complexity/(P+1)^2)")->check(CLI::Range(kMinDegree, kMaxDegree));
   app.add_option("--smooth", job.smooth, "Log-Euclidean smoothing of the metric M^T M across background cells: passes (0 = none)")
       ->capture_default_str()->check(CLI::Range(0, 1000));
@@ -65,9 +69,9 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(1.0, 3.0));
   app.add_option("--write-frame", frame_out, "Also write the frame actually meshed (after filters and --complexity)");
   app.add_flag("--no-exact-count", no_exact, "Do not set the point count to the requested one (adjust_count)");
-  app.add_option("--max-cycles", opt.max_cycles, "Split/merge cycles at most")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--max-cycles", opt.max_cycles, "Split/merge cycles at most")->capture_default_str()->check(PositiveValue);
   app.add_option("--max-iterations", opt.lbfgs.max_iterations, "L-BFGS iterations per minimisation at most (500 with --analytic)")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(PositiveValue);
   app.add_option("--weight", opt.lbfgs.gamma, "Energy weight |det M|^gamma: 1 = one point per unit metric area in "
                  "graded frames; 0 = the thesis's energy (--analytic's default)")->capture_default_str();
   app.add_flag("--precondition", opt.lbfgs.precondition, "Scale every site's variables by its local frame");

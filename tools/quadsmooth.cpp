@@ -4,7 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "cli/parse_errors.hpp"
 #include "cli/tool.hpp"
+#include "core/format.hpp"
 #include "io/msh.hpp"
 #include "mesh/validate.hpp"
 #include "quad/quality_summary.hpp"
@@ -35,14 +37,14 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", out, "Output mesh (.msh); report beside it as .json")->required();
   app.add_option("--sweeps", opt.sweeps, "Smoothing sweeps over the interior nodes")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeValue);
   app.add_option("--halvings", opt.max_halvings, "Halvings of a rejected move before it is skipped")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeValue);
   app.add_option("--tolerance", opt.tolerance,
                  "Stop when no node moves more than this fraction of its mean edge length")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeValue);
   app.add_option("--frame", frame_path,
                  "Frame file (background mesh with the cell field Vinv): smooth in its metric space")
       ->check(CLI::ExistingFile);
@@ -89,9 +91,9 @@ int main(int argc, char** argv) {
     rep["quality_before"] = to_json(before);
     rep["quality"] = to_json(after);
     tool.log(std::to_string(st.sweeps) + " sweeps over " + std::to_string(st.interior_nodes) +
-             " interior nodes; min angle " + std::to_string(before.min_angle_deg) + " -> " +
-             std::to_string(after.min_angle_deg) + " deg, mean cell min angle " +
-             std::to_string(before.mean_cell_min_angle_deg) + " -> " + std::to_string(after.mean_cell_min_angle_deg));
+             " interior nodes; min angle " + sci(before.min_angle_deg) + " -> " +
+             sci(after.min_angle_deg) + " deg, mean cell min angle " +
+             sci(before.mean_cell_min_angle_deg) + " -> " + sci(after.mean_cell_min_angle_deg));
     {
       auto ph = tool.phase("write");
       write_msh(m, out);

@@ -2,7 +2,9 @@
 // each quad split into 4 and each remaining triangle into 3. See docs/recombine.md.
 #include <string>
 
+#include "cli/parse_errors.hpp"
 #include "cli/tool.hpp"
+#include "core/format.hpp"
 #include "io/msh.hpp"
 #include "mesh/validate.hpp"
 #include "quad/recombine.hpp"
@@ -41,11 +43,11 @@ int main(int argc, char** argv) {
   app.add_option("--topology-passes", opt.blossom.optimize_topology,
                  "Clean-up: Gmsh's topological optimisation passes (Mesh.RecombineOptimizeTopology)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeValue);
   app.add_option("--relocation-passes", opt.blossom.smoothing,
                  "Clean-up: Gmsh's node relocation passes after recombination (Mesh.Smoothing)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeValue);
   std::string matching, frame_path;
   app.add_option("--matching", matching,
                  "metric (default when a frame is known) or blossom (Gmsh; the default without a frame)")
@@ -58,6 +60,11 @@ int main(int argc, char** argv) {
                  "Metric matching: pairs of metric quality at or below this stay triangles")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.99));
+  app.add_option("--pair-bonus", opt.metric.pair_bonus,
+                 "Metric matching: weight added to every pair (larger: fewer unmatched triangles, longer "
+                 "chains of sheared pairs)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
   bool no_split = false;
   app.add_flag("--no-split", no_split, "Stop after Blossom: write the quad-dominant mesh");
 
@@ -102,8 +109,8 @@ int main(int argc, char** argv) {
     tool.log(std::to_string(st.triangles_in) + " triangles -> " +
              std::to_string(metric ? st.metric.quads : st.blossom.quads) + " quads + " +
              std::to_string(metric ? st.metric.triangles : st.blossom.triangles) + " triangles -> " + std::to_string(st.cells_out) +
-             " cells; min angle " + std::to_string(st.quality.min_angle_deg) + " deg, min scaled Jacobian " +
-             std::to_string(st.quality.min_scaled_jacobian));
+             " cells; min angle " + sci(st.quality.min_angle_deg) + " deg, min scaled Jacobian " +
+             sci(st.quality.min_scaled_jacobian));
     {
       auto ph = tool.phase("write");
       write_msh(q, out);

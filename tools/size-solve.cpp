@@ -1,10 +1,11 @@
 // size-solve: the global size field and the target frame M = V^-1 (thesis §5.3-5.4, eqs.
-// 5.17-5.25, 3.13; DESIGN.md §3-4). See docs/size-solve.md.
+// 5.17-5.25, 3.13; docs/design.md §3-4). See docs/size-solve.md.
 #include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "cli/tool.hpp"
+#include "core/format.hpp"
 #include "io/msh.hpp"
 #include "mesh/validate.hpp"
 #include "sizing/size_frame.hpp"
@@ -96,8 +97,8 @@ int main(int argc, char** argv) {
     rep.update(to_json(r));
     rep["cells"] = shape.num_cells();
     rep["current_dofs"] = dofs;
-    tool.log("target " + std::to_string(r.target_complexity) + " DOFs, continuous complexity " +
-             std::to_string(r.continuous_complexity) + " (~" + std::to_string(std::lround(r.continuous_complexity / (n * n))) +
+    tool.log("target " + sci(r.target_complexity) + " DOFs, continuous complexity " +
+             sci(r.continuous_complexity) + " (~" + std::to_string(std::lround(r.continuous_complexity / (n * n))) +
              " cells of p = " + std::to_string(r.p) + ")");
     {
       auto ph = tool.phase("write");

@@ -2,7 +2,7 @@
 """dgsolve benchmark (issue 3): wall time of assembly and solve, peak memory, iterations, for
 p = 1, 2, 3 on the S-shock near 2e4, 4e4 and 6.5e4 DOFs, on an adapted-like anisotropic mesh
 (columns graded to 50:1 cells at x = 1/2), with UMFPACK for comparison, and the ratio to the
-thesis's final-mesh solve times (shared/reference/thesis-tables.json).
+thesis's final-mesh solve times (docs/data/thesis-tables.json).
 
 usage: run_bench.py [--bin DIR] [--reps N] [--threads T] [--quick] [--out FILE.json]
 
@@ -26,7 +26,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SRC = os.path.abspath(os.path.join(HERE, "..", ".."))
-SHARED = os.path.abspath(os.path.join(SRC, "..", "shared"))
+TABLES = os.path.join(SRC, "docs", "data", "thesis-tables.json")
 
 # (label, case, p, nx, ny, stretch, solver): n x n grids with (p+1)^2 n^2 ~ 2e4, 4e4, 6.5e4 DOFs.
 FULL = [
@@ -88,7 +88,7 @@ def run_one(dgsolve, mesh, case, p, solver, threads, out):
 
 
 def thesis_rows():
-    path = os.path.join(SHARED, "reference", "thesis-tables.json")
+    path = TABLES
     try:
         return json.load(open(path))["cases"]["sshock-feature"]["rows"]
     except (OSError, KeyError):

@@ -29,7 +29,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SRC = os.path.abspath(os.path.join(HERE, "..", ".."))
-FIXTURES = os.environ.get("QUADAPT_SHARED_DIR", "/work/shared") + "/reference/philip-fixtures"
+FIXTURES = os.environ.get("QUADAPT_FIXTURES_DIR", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "fixtures", "philip"))
 COMPLEXITY = {1: 3456, 2: 7776, 3: 13824}  # README: step 3 of the 1.5x sequences
 
 

@@ -4,11 +4,10 @@
 #   A = bamgquad FRAME                         (BAMG + Blossom + split)
 #   B = lpcvt FRAME | recombine | quadsmooth   (the thesis's path)
 # plus the thesis's own output_<case>_2.msh; meshquality (physical, and in the frame's metric).
-# usage: figures.sh BIN SHARED OUT
+# usage: figures.sh BIN FIXTURES OUT  (FIXTURES = tests/fixtures/philip)
 set -euo pipefail
-BIN=$1; SHARED=$2; OUT=$3
+BIN=$1; FIX=$2; OUT=$3
 SRC=$(cd "$(dirname "$0")/../.." && pwd)
-FIX=$SHARED/reference/philip-fixtures
 mkdir -p "$OUT"
 export PATH="$BIN:$PATH"
 cases="ss15_fb_p1 ss15_fb_p2 ss15_adj_p1 ss15_adj_p2 bl15_fb_p2 bl15_fb_p3 bl15_adj_p2 bl15_adj_p3"

@@ -10,7 +10,7 @@ BIN=${1:?usage: make_frame_pictures.sh BIN_DIR}
 G="$SRC/tests/golden/frame"
 # thesis Fig. 6.5a analogue: crosses with arm lengths 1/h1, 1/h2 from the DG solution's frame
 "$BIN/meshplot" -q "$G/sshock16_p2_dg_frame.msh" --field Vinv --glyph cross \
-  --title "S-shock 16x16, p = 2: target frame (arms 1/h1, 1/h2), growth 1.5" -o "$HERE/frame-sshock16-p2-cross.svg"
+  --title "S-shock 16x16, p = 2: target frame (arms in ratio 1/h1 : 1/h2, sized by the cell), growth 1.5" -o "$HERE/frame-sshock16-p2-cross.svg"
 # true-size parallelograms +-v, +-w (the target elements)
 "$BIN/meshplot" -q "$G/sshock16_p2_dg_frame.msh" --field Vinv --glyph parallelogram \
   --title "S-shock 16x16, p = 2: target elements (parallelograms +-v, +-w)" -o "$HERE/frame-sshock16-p2-parallelogram.svg"

@@ -1,4 +1,5 @@
 #include "adjoint/dwr.hpp"
+#include "dg/degree.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -110,7 +111,8 @@ DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U
                               "(J = integral of u^2 over that boundary)");
   check_case_boundaries(cs, mesh);
   const int nc = mesh.num_cells();
-  if (p < 1) throw InputError("adjoint: primal degree p = " + std::to_string(p) + " (need p >= 1)");
+  // the fine space has degree p + 1, which the DG library must support
+  check_degree(p, "adjoint: the solution's degree p =", kMaxAdjointDegree);
   const long long nbc = static_cast<long long>(p + 1) * (p + 1);
   if (U.size() != nbc * nc)
     throw InputError("adjoint: solution vector of size " + std::to_string(U.size()) + " does not match degree " +

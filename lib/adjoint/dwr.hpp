@@ -1,6 +1,6 @@
 #pragma once
 // The dual-weighted residual (DWR) error estimate of a boundary functional on the enriched
-// degree-(p+1) DG space (thesis sections 2.3-2.4, eqs. 2.18-2.27, section 5.4; DESIGN.md 4).
+// degree-(p+1) DG space (thesis sections 2.3-2.4, eqs. 2.18-2.27, section 5.4; docs/design.md §4).
 //
 // Given the degree-p solution u_H of dgsolve on a mesh (conforming or 2:1 non-conforming):
 //   1. inject u_H into the degree-(p+1) space on the same mesh: u_h^H = I_h^H u_H (exact, the

@@ -1,6 +1,6 @@
 #pragma once
 // Driver of FreeFEM's standalone BAMG, `ffbamg` (Debian package freefem++), for metric-driven
-// anisotropic triangulation. Gmsh 4.8.4's own BAMG path corrupts rotated metrics (DESIGN.md §1).
+// anisotropic triangulation. Gmsh 4.8.4's own BAMG path corrupts rotated metrics (docs/design.md §1).
 //
 // Call: ffbamg -b BACKGROUND.mesh -M METRIC.mtr -o OUT.mesh -nbv N -v 0 [-splitpbedge]
 //              [-ratio R] [-NbSmooth k]

@@ -1,5 +1,5 @@
 #pragma once
-// From a frame field (per-cell M = V^-1, DESIGN.md §3-4) to BAMG's input: the background
+// From a frame field (per-cell M = V^-1, docs/design.md §3-4) to BAMG's input: the background
 // triangulation and a per-vertex Riemannian metric.
 //
 // Sizes (docs/bamgquad.md). The frame's target element is the parallelogram with edges 2 h1,

@@ -25,7 +25,41 @@ double constant_value(const json& v, const std::string& path, const std::string&
   throw InputError(path, "key '" + key + "': expected a number or a constant expression string, got " + v.dump());
 }
 
+/// Parses a map {"name": "expression", ...} of boundary data under `key`.
+std::vector<BoundaryData> boundary_data_map(const json& d, const std::string& path, const std::string& key) {
+  std::vector<BoundaryData> out;
+  for (auto it = d.begin(); it != d.end(); ++it) {
+    if (it.key().empty()) throw InputError(path, "key '" + key + "' has an empty boundary name");
+    BoundaryData bd;
+    bd.boundary = it.key();
+    if (it.value().is_number()) bd.source = it.value().dump();
+    else if (it.value().is_string()) bd.source = it.value().get<std::string>();
+    else
+      throw InputError(path, "key '" + key + "." + it.key() + "': expected an expression string, got " + it.value().dump());
+    try {
+      bd.expr = parse_expression(bd.source);
+    } catch (const InputError& e) {
+      throw InputError(path, "key '" + key + "." + it.key() + "': " + e.what());
+    }
+    out.push_back(std::move(bd));
+  }
+  return out;
+}
+
+const BoundaryData* find_data(const std::vector<BoundaryData>& v, const std::string& name) {
+  for (const BoundaryData& d : v)
+    if (d.boundary == name) return &d;
+  return nullptr;
+}
+
 }  // namespace
+
+const BoundaryData* Case::dirichlet_value(const std::string& group_name) const {
+  return find_data(dirichlet_data, group_name);
+}
+const BoundaryData* Case::neumann_value(const std::string& group_name) const {
+  return find_data(neumann_data, group_name);
+}
 
 bool Case::is_dirichlet(const std::string& group_name) const {
   if (dirichlet_all) return true;
@@ -41,11 +75,11 @@ Case parse_case(const std::string& text, const std::string& path) {
   }
   if (!j.is_object()) throw InputError(path, "a case file must be a JSON object");
   static const std::vector<std::string> known = {"name",      "description", "diffusion", "advection",
-                                                 "exact",     "dirichlet",   "functional"};
+                                                 "exact",     "dirichlet",   "neumann",   "functional"};
   for (auto it = j.begin(); it != j.end(); ++it)
     if (std::find(known.begin(), known.end(), it.key()) == known.end())
       throw InputError(path, "unknown key '" + it.key() +
-                                 "' (known: name, description, diffusion, advection, exact, dirichlet, functional)");
+                                 "' (known: name, description, diffusion, advection, exact, dirichlet, neumann, functional)");
 
   Case cs;
   cs.path = path;
@@ -94,14 +128,28 @@ Case parse_case(const std::string& text, const std::string& path) {
     const json& d = j["dirichlet"];
     if (d.is_string() && d.get<std::string>() == "all") {
       cs.dirichlet_all = true;
+    } else if (d.is_object()) {
+      cs.dirichlet_all = false;
+      cs.dirichlet_data = boundary_data_map(d, path, "dirichlet");
+      for (const BoundaryData& bd : cs.dirichlet_data) cs.dirichlet.push_back(bd.boundary);
     } else {
-      if (!d.is_array()) throw InputError(path, "key 'dirichlet' must be a list of boundary names (or \"all\")");
+      if (!d.is_array())
+        throw InputError(path, "key 'dirichlet' must be a list of boundary names, a map {name: expression} (or \"all\")");
       cs.dirichlet_all = false;
       for (const json& n : d) {
         if (!n.is_string()) throw InputError(path, "key 'dirichlet' must list boundary names (strings)");
         cs.dirichlet.push_back(n.get<std::string>());
       }
     }
+  }
+  if (j.contains("neumann")) {
+    const json& d = j["neumann"];
+    if (!d.is_object()) throw InputError(path, "key 'neumann' must be a map {boundary name: expression}");
+    cs.neumann_data = boundary_data_map(d, path, "neumann");
+    for (const BoundaryData& bd : cs.neumann_data)
+      if (cs.is_dirichlet(bd.boundary))
+        throw InputError(path, "boundary '" + bd.boundary + "' has Neumann data but is a Dirichlet boundary" +
+                                   (cs.dirichlet_all ? " (\"dirichlet\" absent means every boundary)" : ""));
   }
   if (j.contains("functional")) {
     const json& f = j["functional"];
@@ -128,6 +176,10 @@ void check_case_boundaries(const Case& cs, const Mesh& mesh) {
   for (const std::string& n : cs.dirichlet)
     if (mesh.find_group(n) < 0)
       throw InputError(cs.path, "Dirichlet boundary '" + n + "' is not a boundary group of the mesh (groups: " +
+                                    list() + ")");
+  for (const BoundaryData& bd : cs.neumann_data)
+    if (mesh.find_group(bd.boundary) < 0)
+      throw InputError(cs.path, "Neumann boundary '" + bd.boundary + "' is not a boundary group of the mesh (groups: " +
                                     list() + ")");
   if (cs.has_functional() && mesh.find_group(cs.functional_boundary) < 0)
     throw InputError(cs.path, "functional boundary '" + cs.functional_boundary +

@@ -1,6 +1,6 @@
 #pragma once
 // A test case of the advection-diffusion solver: PDE constants, manufactured solution,
-// boundary conditions and functional (DESIGN.md section 3; thesis eq. 6.2).
+// boundary conditions and functional (docs/design.md §3; thesis eq. 6.2).
 //
 // The PDE, with the thesis's sign convention (eq. 6.2):
 //     div(D grad u) - c . grad u = S      in the domain,
@@ -15,12 +15,18 @@
 //                                                   such as "0.01*pi/e*12"
 //     "advection":   [cx, cy],                      default 0; numbers or constant expressions
 //     "exact":       "0.75*tanh(4*sin(10*y-5)-24*x+12)",   required: u(x, y)
-//     "dirichlet":   ["left", "bottom"],            default: every boundary
+//     "dirichlet":   ["left", "bottom"],            default: every boundary; data u = u_exact
+//               or   {"inner": "0", "outer": "g(x,y)"}   map: boundary name -> data expression
+//     "neumann":     {"right": "h(x,y)"}            optional: diffusive flux data D grad u . n
 //     "functional":  {"boundary": "right"}          optional: J(u) = integral of u^2 over it
 //   }
-// Boundaries not listed in "dirichlet" are natural: the diffusive flux D grad u . n is taken from
-// the exact solution (Neumann data) and the advective flux from the interior trace (outflow).
-// On Dirichlet boundaries the data u_exact enters weakly; with D = 0 only where c . n < 0.
+// Boundaries not listed in "dirichlet" are natural: the diffusive flux D grad u . n (n outward)
+// is the "neumann" expression of that boundary, else taken from the exact solution, and the
+// advective flux is upwind with the outside state u_exact (the interior trace on outflow).
+// On Dirichlet boundaries the data (the map's expression, else u_exact) enters weakly; with
+// D = 0 only where c . n < 0. Data expressions are evaluated at the physical quadrature points
+// of the mesh's boundary (the polygon for straight cells, the curved map for curved ones), so
+// with data that is data a straight-sided wall shows its geometric error.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -29,6 +35,13 @@
 #include "mesh/mesh.hpp"
 
 namespace quadapt {
+
+/// Boundary data given as an expression of (x, y) on one named boundary.
+struct BoundaryData {
+  std::string boundary;  ///< boundary group name
+  std::string source;    ///< the expression text
+  Expr expr;
+};
 
 struct Case {
   std::string path;  ///< file it was read from (for messages); may be empty
@@ -40,12 +53,18 @@ struct Case {
   Expr exact;                                           ///< u(x, y)
   bool dirichlet_all = true;                            ///< "dirichlet" absent: every boundary
   std::vector<std::string> dirichlet;                   ///< listed Dirichlet boundary names
+  std::vector<BoundaryData> dirichlet_data;  ///< map form of "dirichlet": value g per boundary
+  std::vector<BoundaryData> neumann_data;    ///< "neumann": D grad u . n per natural boundary
   std::string functional_boundary;                      ///< empty: no functional
 
   bool has_functional() const { return !functional_boundary.empty(); }
   /// Whether the boundary group called `group_name` carries Dirichlet data (group_name may be
   /// empty for boundary edges without a group: Dirichlet only when every boundary is).
   bool is_dirichlet(const std::string& group_name) const;
+  /// The data expression given for boundary `group_name`, or nullptr (then u_exact's trace,
+  /// respectively D grad u_exact . n, is the data).
+  const BoundaryData* dirichlet_value(const std::string& group_name) const;
+  const BoundaryData* neumann_value(const std::string& group_name) const;
   /// True when D = 0 (pure advection).
   bool advection_only() const { return diffusion.isZero(0.0); }
 };

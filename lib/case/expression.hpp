@@ -1,5 +1,5 @@
 #pragma once
-// Scalar expressions in x, y for manufactured solutions (DESIGN.md section 3): parsing, exact
+// Scalar expressions in x, y for manufactured solutions (docs/design.md §3): parsing, exact
 // symbolic differentiation, and fast compiled evaluation.
 //
 // Grammar (whitespace ignored, case-sensitive):

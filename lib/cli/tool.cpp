@@ -7,6 +7,9 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/help_examples.hpp"
+#include "cli/parse_errors.hpp"
+#include "cli/provenance.hpp"
 #include "core/atomic_file.hpp"
 
 namespace quadapt {
@@ -20,14 +23,16 @@ constexpr const char* kExitCodes =
 Tool::Tool(std::string name, std::string summary, std::string details)
     : name_(std::move(name)), app_(summary, name_) {
   std::string footer = details.empty() ? std::string(kExitCodes) : details + "\n\n" + kExitCodes;
+  const std::string example = help_example(name_);
+  if (!example.empty()) footer += "\n\n" + example;
   app_.footer(footer);
-  app_.set_version_flag("--version", std::string(name_) + " (quadapt) " + QUADAPT_VERSION);
+  app_.set_version_flag("--version", version_text(name_));
   app_.add_option("--report", report_path_,
                   "JSON report path (default: the output path with extension .json)");
   app_.add_flag("-q,--quiet", quiet_, "No progress messages on stderr");
   app_.add_option("--threads", threads_,
                   "OpenMP threads (default: OMP_NUM_THREADS, else all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeValue);
   report_ = nlohmann::json::object();
 }
 
@@ -70,6 +75,11 @@ void Tool::write_report() {
   report_["version"] = QUADAPT_VERSION;
   report_["threads"] = omp_get_max_threads();
   report_["peak_memory_mb"] = peak_memory_mb();
+  nlohmann::json prov = build_provenance();
+  prov["date"] = start_date_;
+  prov["host"] = host_provenance();
+  prov["input_sha256"] = input_checksums(inputs_);
+  report_["provenance"] = prov;
   report_["timings"]["total"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   if (report_path_ == "-") {
@@ -82,6 +92,7 @@ void Tool::write_report() {
 
 int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   start_ = std::chrono::steady_clock::now();
+  start_date_ = utc_now_iso8601();
   std::ostringstream cmd;
   for (int i = 0; i < argc; ++i) cmd << (i ? " " : "") << argv[i];
   report_["command"] = cmd.str();
@@ -90,7 +101,8 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   } catch (const CLI::Success& e) {  // --help, --version
     return app_.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << name_ << ": " << e.what() << " (see " << name_ << " --help)" << std::endl;
+    std::cerr << name_ << ": " << parse_error_message(app_, argc, argv, e) << " (see " << name_ << " --help)"
+              << std::endl;
     return 2;
   }
   if (threads_ > 0) omp_set_num_threads(threads_);

@@ -7,7 +7,8 @@
 // The runner supplies --help, --version, --report FILE, -q/--quiet, --threads N, catches every
 // exception and turns it into ONE line on stderr plus the exit code below, and writes the JSON
 // report (provenance: tool, version, command line, effective options, inputs, outputs,
-// timings per phase, threads, peak memory).
+// timings per phase, threads, peak memory, and under "provenance" the git commit, build type,
+// library versions, date, host CPU and input sha256s: cli/provenance.hpp).
 //
 // Exit-code contract (docs/exit-codes.md):
 //   0  success
@@ -93,6 +94,7 @@ class Tool {
   bool quiet_ = false;
   int threads_ = 0;
   std::chrono::steady_clock::time_point start_;
+  std::string start_date_;  ///< UTC, ISO 8601 (provenance)
 };
 
 /// Peak resident memory of this process in MiB (from /proc/self/status VmHWM).

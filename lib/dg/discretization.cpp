@@ -1,13 +1,16 @@
 #include "dg/discretization.hpp"
+#include "dg/degree.hpp"
 
 #include <omp.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "core/error.hpp"
+#include "mesh/curved.hpp"
 
 namespace quadapt {
 
@@ -33,10 +36,13 @@ void lagrange_1d(const std::vector<double>& nodes, double x, double* l, double* 
   }
 }
 
-/// Bilinear map x(xi, eta) = a0 + a1 xi + a2 eta + a3 xi eta of a straight-sided quad.
+/// The cell map: bilinear x(xi, eta) = a0 + a1 xi + a2 eta + a3 xi eta for a straight-sided
+/// quad, the Lagrange map of mesh/curved.hpp for a curved one.
 struct QuadGeo {
   Vec2 a0, a1, a2, a3;
+  std::optional<CellMap> curved;
   explicit QuadGeo(const Mesh& m, int c) {
+    if (m.is_curved()) curved.emplace(m, c);
     const Cell& cell = m.cells[c];
     const Vec2 &X0 = m.nodes[cell.v[0]], &X1 = m.nodes[cell.v[1]], &X2 = m.nodes[cell.v[2]],
                &X3 = m.nodes[cell.v[3]];
@@ -45,23 +51,29 @@ struct QuadGeo {
     a2 = 0.25 * (-X0 - X1 + X2 + X3);
     a3 = 0.25 * (X0 - X1 + X2 - X3);
   }
-  Vec2 map(double xi, double eta) const { return a0 + a1 * xi + a2 * eta + a3 * (xi * eta); }
+  Vec2 map(double xi, double eta) const {
+    if (curved) return curved->map(xi, eta);
+    return a0 + a1 * xi + a2 * eta + a3 * (xi * eta);
+  }
   /// Columns of the Jacobian: t1 = dx/dxi, t2 = dx/deta; returns det.
   double jac(double xi, double eta, Vec2& t1, Vec2& t2) const {
+    if (curved) return curved->jacobian(xi, eta, t1, t2);
     t1 = a1 + a3 * eta;
     t2 = a2 + a3 * xi;
     return t1.x() * t2.y() - t1.y() * t2.x();
   }
 };
 
-/// Reference coordinates of edge parameter s (0 at v[e], 1 at v[e+1]) on local edge e.
-inline void edge_point(int e, double s, double& xi, double& eta) {
-  switch (e) {
-    case 0: xi = -1 + 2 * s; eta = -1; break;
-    case 1: xi = 1; eta = -1 + 2 * s; break;
-    case 2: xi = 1 - 2 * s; eta = 1; break;
-    default: xi = -1; eta = 1 - 2 * s; break;
+/// Geometry of face f at parameter t in [0, 1] (from a to b), on side 0's map G: the point x,
+/// side 0's outward unit normal n and the arc length per unit t. Straight faces: the segment.
+void face_geometry(const QuadGeo& G, const Face& f, double t, Vec2& x, Vec2& n, double& dsdt) {
+  if (!G.curved) {
+    x = f.a + t * (f.b - f.a);
+    n = f.normal;
+    dsdt = f.length;
+    return;
   }
+  dsdt = edge_geometry(*G.curved, f.local_edge[0], f.s_a[0] + t * (f.s_b[0] - f.s_a[0]), x, n) * (f.s_b[0] - f.s_a[0]);
 }
 
 }  // namespace
@@ -76,7 +88,15 @@ struct DGDiscretization::Impl {
   MatrixXd V, Gxi, Geta;       // Q x nb reference tables (q = q1 + nq q2)
   std::vector<QuadGeo> geo;
   std::vector<double> area;
-  std::vector<std::array<double, 4>> height;  // |K| / |edge e|
+  std::vector<std::array<double, 4>> height;  // |K| / |edge e| (arc length when curved)
+  // Face geometry at the nf face Gauss points of side 0 (index f * nf + q): physical point x,
+  // unit normal n (side 0 outward) and arc-length weight w (including the Gauss weight).
+  // Straight faces: x on the segment [a, b], n = Face::normal, w = w_q |b - a| / 2.
+  std::vector<Vec2> fx, fn;
+  std::vector<double> fw;
+  // Boundary data per group: index into data programs (-1: the exact solution's trace / flux).
+  std::vector<int> group_dirichlet, group_neumann;
+  std::vector<ExprProgram> data;
   std::vector<std::vector<int>> rows;         // block pattern: sorted row cells of column cell c
   std::vector<long long> col_start;           // first nnz of cell c's block column
   long long nnz = 0;
@@ -84,8 +104,7 @@ struct DGDiscretization::Impl {
 
 DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, const DGOptions& opt)
     : mesh_(mesh), cs_(cs), p_(p), nb_((p + 1) * (p + 1)), opt_(opt) {
-  if (p < kMinDegree || p > kMaxDegree)
-    throw InputError("degree p = " + std::to_string(p) + " is out of range (" + degree_range() + ")");
+  check_degree(p, "degree p =");
   if (mesh.num_cells() == 0) throw InputError("mesh: no cells");
   if (!mesh.all_quads())
     throw InputError("mesh: " + std::to_string(mesh.num_triangles()) +
@@ -141,8 +160,47 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
     I.area[c] = a;
     const Cell& cell = mesh.cells[c];
     for (int e = 0; e < 4; ++e) {
-      double len = (mesh.nodes[cell.v[(e + 1) % 4]] - mesh.nodes[cell.v[e]]).norm();
+      double len = 0;
+      if (mesh.is_curved()) {
+        for (int q = 0; q < I.nq; ++q) {
+          Vec2 x, n;
+          len += 0.5 * I.gv.w[q] * edge_geometry(*I.geo[c].curved, e, 0.5 * (I.gv.x[q] + 1), x, n);
+        }
+      } else {
+        len = (mesh.nodes[cell.v[(e + 1) % 4]] - mesh.nodes[cell.v[e]]).norm();
+      }
       I.height[c][e] = a / len;
+    }
+  }
+
+  // Face geometry at the face Gauss points.
+  const size_t nfq = static_cast<size_t>(I.nq);
+  I.fx.resize(topo_.faces.size() * nfq);
+  I.fn.resize(I.fx.size());
+  I.fw.resize(I.fx.size());
+  for (size_t fi = 0; fi < topo_.faces.size(); ++fi) {
+    const Face& f = topo_.faces[fi];
+    if (mesh.is_curved() && !f.is_conforming())
+      throw InputError("mesh: curved cells with hanging nodes are not supported (non-conforming face near (" +
+                       std::to_string(0.5 * (f.a + f.b).x()) + ", " + std::to_string(0.5 * (f.a + f.b).y()) + "))");
+    for (size_t q = 0; q < nfq; ++q) {
+      const size_t k = fi * nfq + q;
+      double dsdt;
+      const double t = 0.5 * (I.gv.x[q] + 1);
+      face_geometry(I.geo[f.cell[0]], f, t, I.fx[k], I.fn[k], dsdt);
+      I.fw[k] = 0.5 * I.gv.w[q] * dsdt;
+      if (mesh.is_curved() && !f.is_boundary()) {
+        // Both sides must trace the same curve (shared edge nodes): the traces are matched by
+        // the edge parameter.
+        double xi, eta;
+        edge_reference_point(f.local_edge[1], f.s_a[1] + t * (f.s_b[1] - f.s_a[1]), xi, eta);
+        const Vec2 x1 = I.geo[f.cell[1]].map(xi, eta);
+        if ((x1 - I.fx[k]).norm() > 1e-9 * f.length)
+          throw InputError("mesh: cells " + std::to_string(f.cell[0] + 1) + " and " + std::to_string(f.cell[1] + 1) +
+                           " share the edge near (" + std::to_string(I.fx[k].x()) + ", " + std::to_string(I.fx[k].y()) +
+                           ") but their curved edges differ by " + std::to_string((x1 - I.fx[k]).norm()) +
+                           " (the edge's high-order nodes must be shared)");
+      }
     }
   }
 
@@ -153,6 +211,20 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
     if (!f.is_boundary()) continue;
     std::string name = f.group >= 0 ? mesh.groups[f.group].name : std::string();
     face_dirichlet_[fi] = cs.is_dirichlet(name) ? 1 : 0;
+  }
+  // Boundary data given as expressions (case file's map forms).
+  const int ng = static_cast<int>(mesh.groups.size());
+  I.group_dirichlet.assign(ng, -1);
+  I.group_neumann.assign(ng, -1);
+  for (int gi = 0; gi < ng; ++gi) {
+    if (const BoundaryData* d = cs.dirichlet_value(mesh.groups[gi].name)) {
+      I.group_dirichlet[gi] = static_cast<int>(I.data.size());
+      I.data.emplace_back(std::vector<Expr>{d->expr});
+    }
+    if (const BoundaryData* d = cs.neumann_value(mesh.groups[gi].name)) {
+      I.group_neumann[gi] = static_cast<int>(I.data.size());
+      I.data.emplace_back(std::vector<Expr>{d->expr});
+    }
   }
   if (cs.has_functional()) {
     functional_group_ = mesh.find_group(cs.functional_boundary);
@@ -263,29 +335,32 @@ void DGDiscretization::assemble_columns(
       Phi[k].resize(nf, nb);
       Nn[k].resize(nf, nb);
     }
-    VectorXd Wf(nf), gD(nf), gN(nf);
-    std::vector<double> scratch(exact_->scratch_size());
+    VectorXd Wf(nf), gD(nf), gN(nf), nDn(nf), cn(nf), cplus(nf), cminus(nf), pen(nf), alpha(nf);
+    std::vector<Vec2> Dn(nf);
+    int nscratch = exact_->scratch_size();
+    for (const ExprProgram& d : I.data) nscratch = std::max(nscratch, d.scratch_size());
+    std::vector<double> scratch(nscratch);
     std::vector<double> lx(n1), dlx(n1), ly(n1), dly(n1);
     double ex[ExactSolution::NUM_OUTPUTS];
 
     // Trace of side k of face f at the face Gauss points: values Phi[k] and normal fluxes
-    // Nn[k] = (D grad phi) . n with n the side-0 normal.
-    auto trace = [&](const Face& fc, int k, const Vec2& Dn) {
+    // Nn[k](q) = (D grad phi) . n_q with n_q the side-0 normal at point q (Dn[q] = D n_q).
+    auto trace = [&](const Face& fc, int k, const Vec2* Dn) {
       const int c = fc.cell[k], e = fc.local_edge[k];
       const QuadGeo& G = I.geo[c];
       for (int q = 0; q < nf; ++q) {
         double t = 0.5 * (g.x[q] + 1);
         double s = fc.s_a[k] + t * (fc.s_b[k] - fc.s_a[k]);
         double xi, eta;
-        edge_point(e, s, xi, eta);
+        edge_reference_point(e, s, xi, eta);
         lagrange_1d(I.gll, xi, lx.data(), dlx.data());
         lagrange_1d(I.gll, eta, ly.data(), dly.data());
         if (diff) {
           Vec2 t1, t2;
           double det = G.jac(xi, eta, t1, t2);
           // grad phi = J^-T (dphi/dxi, dphi/deta); project on D n.
-          double cxi = (t2.y() * Dn.x() - t2.x() * Dn.y()) / det;
-          double ceta = (-t1.y() * Dn.x() + t1.x() * Dn.y()) / det;
+          double cxi = (t2.y() * Dn[q].x() - t2.x() * Dn[q].y()) / det;
+          double ceta = (-t1.y() * Dn[q].x() + t1.x() * Dn[q].y()) / det;
           for (int j = 0; j < n1; ++j)
             for (int i = 0; i < n1; ++i) {
               int a = i + n1 * j;
@@ -344,38 +419,48 @@ void DGDiscretization::assemble_columns(
       }
 
       // ---------------------------------------------------------------- faces
+      // Per face Gauss point q: normal n_q (side 0 outward), Dn_q = D n_q, n_q.D n_q, c.n_q.
       for (int fi : topo_.cell_faces[c]) {
         const Face& fc = topo_.faces[fi];
-        const Vec2& n = fc.normal;
-        const Vec2 Dn = D * n;
-        const double nDn = n.dot(Dn);
-        const double cn = cvec.dot(n);
-        for (int q = 0; q < nf; ++q) Wf[q] = 0.5 * g.w[q] * fc.length;
+        const size_t f0 = static_cast<size_t>(fi) * nf;
+        for (int q = 0; q < nf; ++q) {
+          const Vec2& n = I.fn[f0 + q];
+          Dn[q] = D * n;
+          nDn[q] = n.dot(Dn[q]);
+          cn[q] = cvec.dot(n);
+          Wf[q] = I.fw[f0 + q];
+        }
         if (fc.is_boundary()) {
           // c is side 0; n is outward.
-          trace(fc, 0, Dn);
+          trace(fc, 0, Dn.data());
+          const int gd = fc.group >= 0 ? I.group_dirichlet[fc.group] : -1;
+          const int gn = fc.group >= 0 ? I.group_neumann[fc.group] : -1;
           for (int q = 0; q < nf; ++q) {
-            double t = 0.5 * (g.x[q] + 1);
-            Vec2 x = fc.a + t * (fc.b - fc.a);
+            const Vec2& x = I.fx[f0 + q];
             exact_->eval(x.x(), x.y(), ex, scratch.data());
             gD[q] = ex[ExactSolution::U];
-            gN[q] = Dn.x() * ex[ExactSolution::UX] + Dn.y() * ex[ExactSolution::UY];
+            gN[q] = Dn[q].x() * ex[ExactSolution::UX] + Dn[q].y() * ex[ExactSolution::UY];
+            if (gd >= 0 && face_dirichlet_[fi]) I.data[gd].eval(x.x(), x.y(), &gD[q], scratch.data());
+            if (gn >= 0) I.data[gn].eval(x.x(), x.y(), &gN[q], scratch.data());
+            cplus[q] = std::max(cn[q], 0.0);
+            cminus[q] = std::min(cn[q], 0.0);
           }
-          const double cplus = std::max(cn, 0.0), cminus = std::min(cn, 0.0);
           if (diff && face_dirichlet_[fi]) {
-            const double pen = pen_base * nDn / I.height[c][fc.local_edge[0]];
+            const double hK = I.height[c][fc.local_edge[0]];
+            for (int q = 0; q < nf; ++q) pen[q] = pen_base * nDn[q] / hK;
             FL.topRows(nf) = Phi[0];
             FL.bottomRows(nf) = Nn[0];
-            FR.topRows(nf) = Wf.asDiagonal() * (-Nn[0] + (pen + cplus) * Phi[0]);
+            FR.topRows(nf) = Wf.asDiagonal() * (-Nn[0] + (pen + cplus).asDiagonal() * Phi[0]);
             FR.bottomRows(nf) = -(Wf.asDiagonal() * Phi[0]);
             blk[kd].noalias() += FL.transpose() * FR;
             VectorXd wg = Wf.cwiseProduct(gD);
-            rhs.noalias() += (pen - cminus) * (Phi[0].transpose() * wg) - Nn[0].transpose() * wg;
+            rhs.noalias() += Phi[0].transpose() * (pen - cminus).cwiseProduct(wg) - Nn[0].transpose() * wg;
           } else {
-            // Natural: Neumann data D grad u_exact . n, upwind advection with outside state u_exact.
-            if (cplus > 0) blk[kd].noalias() += cplus * (Phi[0].transpose() * (Wf.asDiagonal() * Phi[0]));
+            // Natural: Neumann data (the case's, else D grad u_exact . n), upwind advection with
+            // outside state u_exact.
+            if (cplus.maxCoeff() > 0) blk[kd].noalias() += Phi[0].transpose() * (Wf.cwiseProduct(cplus).asDiagonal() * Phi[0]);
             if (!diff) gN.setZero();
-            VectorXd data = Wf.cwiseProduct(gN - cminus * gD);
+            VectorXd data = Wf.cwiseProduct(gN - cminus.cwiseProduct(gD));
             rhs.noalias() += Phi[0].transpose() * data;
           }
           continue;
@@ -383,22 +468,25 @@ void DGDiscretization::assemble_columns(
         const int j = fc.cell[0] == c ? 0 : 1;  // trial side (this cell)
         const int i = 1 - j;                    // the neighbour's side
         const int other = fc.cell[i];
-        trace(fc, 0, Dn);
-        trace(fc, 1, Dn);
+        trace(fc, 0, Dn.data());
+        trace(fc, 1, Dn.data());
         const double sgn[2] = {1.0, -1.0};
-        const double up[2] = {cn >= 0 ? 1.0 : 0.0, cn >= 0 ? 0.0 : 1.0};
         const double h = std::min(I.height[fc.cell[0]][fc.local_edge[0]], I.height[fc.cell[1]][fc.local_edge[1]]);
-        const double pen = diff ? pen_base * nDn / h : 0.0;
+        for (int q = 0; q < nf; ++q) pen[q] = diff ? pen_base * nDn[q] / h : 0.0;
         for (int ti : {j, i}) {  // test side
-          const double alpha = pen * sgn[ti] * sgn[j] + sgn[ti] * up[j] * cn;
+          // alpha_q = pen sgn_ti sgn_j + sgn_ti up_j c.n, up_j = 1 when side j is upwind at q.
+          for (int q = 0; q < nf; ++q) {
+            const double up = (cn[q] >= 0) == (j == 0) ? 1.0 : 0.0;
+            alpha[q] = pen[q] * sgn[ti] * sgn[j] + sgn[ti] * up * cn[q];
+          }
           if (diff) {
             FL.topRows(nf) = Phi[ti];
             FL.bottomRows(nf) = Nn[ti];
-            FR.topRows(nf) = Wf.asDiagonal() * (-0.5 * sgn[ti] * Nn[j] + alpha * Phi[j]);
+            FR.topRows(nf) = Wf.asDiagonal() * (-0.5 * sgn[ti] * Nn[j] + alpha.asDiagonal() * Phi[j]);
             FR.bottomRows(nf) = (-0.5 * sgn[j]) * (Wf.asDiagonal() * Phi[j]);
             B.noalias() = FL.transpose() * FR;
           } else {
-            B.noalias() = alpha * (Phi[ti].transpose() * (Wf.asDiagonal() * Phi[j]));
+            B.noalias() = Phi[ti].transpose() * (Wf.cwiseProduct(alpha).asDiagonal() * Phi[j]);
           }
           blk[ti == j ? kd : pos(other)] += B;
         }
@@ -476,7 +564,7 @@ void boundary_trace(const Face& f, const std::vector<double>& gll, double t, dou
   const int n1 = static_cast<int>(gll.size());
   double s = f.s_a[0] + t * (f.s_b[0] - f.s_a[0]);
   double xi, eta;
-  edge_point(f.local_edge[0], s, xi, eta);
+  edge_reference_point(f.local_edge[0], s, xi, eta);
   std::vector<double> lx(n1), dlx(n1), ly(n1), dly(n1);
   lagrange_1d(gll, xi, lx.data(), dlx.data());
   lagrange_1d(gll, eta, ly.data(), dly.data());
@@ -494,10 +582,14 @@ double DGDiscretization::functional(const Eigen::VectorXd& U) const {
     if (!f.is_boundary() || f.group != functional_group_) continue;
     const double* Uc = U.data() + static_cast<long long>(f.cell[0]) * nb_;
     for (size_t q = 0; q < g.x.size(); ++q) {
-      boundary_trace(f, impl_->gll, 0.5 * (g.x[q] + 1), phi.data());
+      const double t = 0.5 * (g.x[q] + 1);
+      boundary_trace(f, impl_->gll, t, phi.data());
       double u = 0;
       for (int a = 0; a < nb_; ++a) u += Uc[a] * phi[a];
-      J += 0.5 * g.w[q] * f.length * u * u;
+      Vec2 x, n;
+      double dsdt;
+      face_geometry(impl_->geo[f.cell[0]], f, t, x, n, dsdt);
+      J += 0.5 * g.w[q] * dsdt * u * u;
     }
   }
   return J;
@@ -512,10 +604,14 @@ Eigen::VectorXd DGDiscretization::functional_gradient(const Eigen::VectorXd& U) 
     if (!f.is_boundary() || f.group != functional_group_) continue;
     const long long off = static_cast<long long>(f.cell[0]) * nb_;
     for (size_t q = 0; q < g.x.size(); ++q) {
-      boundary_trace(f, impl_->gll, 0.5 * (g.x[q] + 1), phi.data());
+      const double t = 0.5 * (g.x[q] + 1);
+      boundary_trace(f, impl_->gll, t, phi.data());
       double u = 0;
       for (int a = 0; a < nb_; ++a) u += U[off + a] * phi[a];
-      double w = 0.5 * g.w[q] * f.length;
+      Vec2 x, n;
+      double dsdt;
+      face_geometry(impl_->geo[f.cell[0]], f, t, x, n, dsdt);
+      double w = 0.5 * g.w[q] * dsdt;
       for (int a = 0; a < nb_; ++a) dJ[off + a] += 2 * w * u * phi[a];
     }
   }
@@ -533,9 +629,11 @@ double DGDiscretization::functional_exact() const {
     for (int k = 0; k < sub; ++k)
       for (size_t q = 0; q < g.x.size(); ++q) {
         double t = (k + 0.5 * (g.x[q] + 1)) / sub;
-        Vec2 x = f.a + t * (f.b - f.a);
+        Vec2 x, n;
+        double dsdt;
+        face_geometry(impl_->geo[f.cell[0]], f, t, x, n, dsdt);
         double u = exact_->u(x.x(), x.y());
-        J += 0.5 * g.w[q] * f.length / sub * u * u;
+        J += 0.5 * g.w[q] * dsdt / sub * u * u;
       }
   }
   return J;

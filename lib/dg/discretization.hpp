@@ -1,6 +1,6 @@
 #pragma once
 // The DG discretisation of steady advection-diffusion on all-quad meshes, conforming or with
-// 2:1 hanging nodes (thesis section 2.1, eq. 2.9; PDE eq. 6.2; DESIGN.md section 4).
+// 2:1 hanging nodes (thesis section 2.1, eq. 2.9; PDE eq. 6.2; docs/design.md §4).
 //
 // PDE (thesis sign convention, eq. 6.2):  div(D grad u) - c . grad u = S.  We discretise the
 // equivalent well-posed form  -div(D grad u) + c . grad u = f  with  f = -S.
@@ -20,14 +20,21 @@
 //   sigma = penalty_factor * p (p+1) * (n^T D n) / h_F,   h_F = min over the two sides of
 //   |K| / |edge of K|  (the cell's height normal to the face; PHiLiP's factor 20 by default).
 // Boundary faces:
-//   Dirichlet (the case names the boundary): the outside state is g = u_exact, i.e.
+//   Dirichlet (the case names the boundary): the outside state is g = the case's data
+//     expression for that boundary, else u_exact, i.e.
 //     int (c.n) (u if c.n >= 0 else g) v  -  int (D grad u.n v + D grad v.n (u - g))
 //     + int sigma (u - g) v;  with D = 0 only the inflow data (c.n < 0) acts.
-//   Natural (not named): the diffusive flux D grad u_exact . n is given (Neumann data) and the
+//   Natural (not named): the diffusive flux is given (the case's "neumann" expression, else
+//     D grad u_exact . n) and the
 //     advective flux is upwind with the outside state u_exact (interior trace on outflow).
 // Quadrature: Gauss with p+2 points per direction in cells and on faces (faces are integrated
 // in physical arc length and mapped into each side's reference coordinates, so non-conforming
 // faces are exact for polynomial traces).
+//
+// Curved quads (mesh/curved.hpp): the bilinear map is replaced by the cell's Lagrange map of
+// geometric order q (isoparametric when q = p, sub-/super-parametric otherwise; conforming
+// curved meshes only); on their faces the normal, the arc length and the data points vary
+// along the face (side 0's map).
 //
 // The linear system is A U = b; the residual is R(U) = A U - b and the Jacobian dR/dU = A. The
 // assembly is column-oriented: every cell computes its own block column (its volume block and
@@ -46,12 +53,6 @@
 #include "mesh/topology.hpp"
 
 namespace quadapt {
-
-/// The DG degrees quadapt supports: the one range of the library, the tools and the loop
-/// (scripts/loop/run-loop.sh reads it from `dgsolve --help`).
-constexpr int kMinDegree = 1, kMaxDegree = 8;
-/// "1..8"
-inline std::string degree_range() { return std::to_string(kMinDegree) + ".." + std::to_string(kMaxDegree); }
 
 using SparseMatrixCSC = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 

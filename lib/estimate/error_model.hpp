@@ -1,6 +1,6 @@
 #pragma once
 // The local continuous error model: optimal frame shape and error constant per cell
-// (thesis eqs. 5.9-5.16, with the conventions of DESIGN.md section 4).
+// (thesis eqs. 5.9-5.16, with the conventions of docs/design.md §4).
 //
 // Frame: V = R(θ) diag(h1, h2) (eq. 3.11), h = sqrt(h1 h2), ρ = h1/h2 (eq. 3.12). The error
 // bound of eq. 5.9 grows like A1 |y|^n along ξ1 = (cos φ, sin φ) and like A2 |y|^n across it

@@ -1,6 +1,6 @@
 #pragma once
 // 1D quadrature rules and the tensor-product Lagrange basis on Gauss-Lobatto (GLL) points that
-// defines quadapt's DG field (thesis section 2.1; DESIGN.md sections 3-4).
+// defines quadapt's DG field (thesis section 2.1; docs/design.md §3-4).
 //
 // Reference interval [-1, 1]; reference quad [-1,1]^2. A degree-p DG function on a quad has
 // (p+1)^2 coefficients u_{i + (p+1) j}, the values at the GLL points (x_i, x_j):

@@ -1,8 +1,8 @@
 #pragma once
 // The one adapter around the Gmsh SDK (gmsh.h, API 4.8): initialisation by RAII and a call
 // wrapper that turns Gmsh failures into quadapt::ExternalError. Every use of the SDK in
-// quadapt goes through lib/gmsh (these and gmsh/gmsh_recombine.hpp); the SDK headers are private to
-// the library.
+// quadapt goes through lib/gmsh (these and gmsh/gmsh_recombine.hpp; docs/design.md §6 for the SDK's
+// quirks); the SDK headers are private to the library.
 //
 //   GmshSession gmsh;                                   // initialise (nested sessions share it)
 //   gmsh_call("open " + path, [&] { gmsh::open(path); });

@@ -1,5 +1,5 @@
 #pragma once
-// The Gmsh interpolation scheme of quadapt's DG field (DESIGN.md section 3, lib/fem/basis.hpp).
+// The Gmsh interpolation scheme of quadapt's DG field (docs/design.md §3, lib/fem/basis.hpp).
 //
 // A degree-p DG function on a quad is stored as its (p+1)^2 nodal values at the tensor GLL
 // points, index k = i + (p+1) j (i along xi, j along eta, reference square [-1,1]^2). Gmsh

@@ -1,8 +1,11 @@
 #pragma once
-// Gmsh MSH files <-> Mesh (DESIGN.md section 3).
+// Gmsh MSH files <-> Mesh (docs/design.md §3).
 //
 // Reading: MSH 4.1 (ASCII and binary) and MSH 2.2 (ASCII and binary). 2D meshes of 3-node
-// triangles and 4-node quads; 2-node lines become boundary edges of their physical group (by
+// triangles and 4-node quads, or curved quads of geometric order 2 to 4 (9-, 16-, 25-node
+// quadrangles, MSH types 10, 36, 37, Gmsh's node ordering; one order per mesh): their
+// high-order nodes become Mesh::curved control points (mesh/curved.hpp) and Mesh::nodes keeps
+// only the vertices. 2- to 5-node lines become boundary edges of their physical group (by
 // name from $PhysicalNames, else "boundary_<tag>"); points and other element types of lower
 // dimension are ignored, 2D elements of other types are an error. Nodes are renumbered 0..n-1,
 // cells in file order. $ElementData views become CellFields, $ElementNodeData views become
@@ -12,7 +15,9 @@
 // edges, split at corners (mesh/boundary.hpp).
 //
 // Writing: MSH 4.1 ASCII with $PhysicalNames, $Entities (one curve per boundary group, one
-// surface), $Nodes, $Elements (boundary lines, then cells), then one view per field. Numbers are
+// surface), $Nodes, $Elements (boundary lines, then cells), then one view per field. Curved
+// meshes are written as 9-, 16- or 25-node quads with 3- to 5-node boundary lines; high-order
+// nodes follow the vertices, shared between cells that hold the same point. Numbers are
 // printed with 17 significant digits so reading back is bit-exact. Gmsh opens the result and
 // shows every field (the DG field through $InterpolationScheme). Written atomically.
 //
@@ -32,7 +37,8 @@ Mesh read_msh(const std::string& path);
 /// read_msh, then validate_mesh(mesh, path, v): how a tool takes an input mesh.
 Mesh read_valid_msh(const std::string& path, const ValidateOptions& v = {});
 
-/// Writes MSH 4.1 ASCII atomically (temporary file + rename).
+/// Writes MSH 4.1 ASCII atomically (temporary file + rename), and PATH.opt beside it when the
+/// mesh has a DG field, so Gmsh displays it smoothly (io/gmsh_options.hpp).
 void write_msh(const Mesh& mesh, const std::string& path);
 
 /// Stream variants (path only used in messages).

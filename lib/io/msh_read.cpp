@@ -12,6 +12,7 @@
 #include "io/msh.hpp"
 #include "io/msh_cursor.hpp"
 #include "mesh/boundary.hpp"
+#include "mesh/curved.hpp"
 
 namespace quadapt {
 
@@ -25,10 +26,13 @@ int nodes_of_type(long long type) {
     case 1: return 2;    // 2-node line
     case 2: return 3;    // 3-node triangle
     case 3: return 4;    // 4-node quadrangle
+    case 10: return 9;   // 9-node quadrangle (order 2)
+    case 36: return 16;  // 16-node quadrangle (order 3)
+    case 37: return 25;  // 25-node quadrangle (order 4)
     case 15: return 1;   // point
-    case 8: return 3;    // 3-node line (skipped: lower dimension)
+    case 8: return 3;    // 3-node line (boundary edge of a curved mesh)
     case 26: return 4;   // 4-node line
-    case 27: return 5;
+    case 27: return 5;   // 5-node line
     case 28: return 6;
     default: return -1;
   }
@@ -45,6 +49,7 @@ std::string type_description(long long type) {
     case 16: return "8-node quadrangle";
     case 21: return "10-node triangle";
     case 36: return "16-node quadrangle";
+    case 37: return "25-node quadrangle";
     default: return "type " + std::to_string(type);
   }
 }
@@ -99,6 +104,7 @@ class MshReader {
     c_.section.clear();
     if (!have_nodes_) c_.fail("missing $Nodes section");
     if (!have_elements_) c_.fail("missing $Elements section");
+    if (quad_order_ > 1) finish_curved();
     build_groups();
     build_fields();
     complete_boundary(m_);
@@ -117,6 +123,8 @@ class MshReader {
   std::unordered_map<long long, int> cell_index_;
   std::vector<long long> cell_tags_;
   std::vector<RawLine> lines_;
+  int quad_order_ = 0;                   // geometric order of the quads (0: none yet)
+  std::vector<int> ho_nodes_;            // curved: per cell (q+1)^2 node indices, lexicographic
   long long domain_phys_ = 0;
   bool domain_seen_ = false;
   std::vector<RawView> views_;
@@ -250,12 +258,23 @@ class MshReader {
   }
 
   void add_element(long long type, long long tag, long long phys, long long entity, const long long* nodes) {
-    if (type == 1) {
+    if (type == 1 || type == 8 || type == 26 || type == 27) {
       lines_.push_back({node(nodes[0], tag), node(nodes[1], tag), phys, entity});
-    } else if (type == 2 || type == 3) {
+    } else if (type == 2 || type == 3 || type == 10 || type == 36 || type == 37) {
       Cell c;
       c.nv = type == 2 ? 3 : 4;
       for (int i = 0; i < c.nv; ++i) c.v[i] = node(nodes[i], tag);
+      const int order = type == 2 || type == 3 ? 1 : type == 10 ? 2 : type == 36 ? 3 : 4;
+      if (quad_order_ == 0) quad_order_ = order;
+      if (order != quad_order_ || (type == 2 && quad_order_ > 1))
+        c_.fail("element " + std::to_string(tag) + " is a " + type_description(type) + " but earlier cells have geometric order " +
+                std::to_string(quad_order_) + " (a mesh has one geometric order; curved meshes are all quads)");
+      if (order > 1) {
+        const std::vector<int> perm = gmsh_quad_node_order(order);
+        const size_t base = ho_nodes_.size();
+        ho_nodes_.resize(base + perm.size());
+        for (size_t k = 0; k < perm.size(); ++k) ho_nodes_[base + perm[k]] = node(nodes[k], tag);
+      }
       if (!cell_index_.emplace(tag, m_.num_cells()).second)
         c_.fail("element tag " + std::to_string(tag) + " appears twice");
       m_.cells.push_back(c);
@@ -270,7 +289,34 @@ class MshReader {
 
   void unsupported(long long type) {
     c_.fail("element " + type_description(type) +
-            " is not supported (quadapt reads 2-node lines, 3-node triangles and 4-node quadrangles)");
+            " is not supported (quadapt reads lines, 3-node triangles and 4-, 9-, 16- and 25-node quadrangles)");
+  }
+
+  /// Curved mesh: the control points of every cell from its high-order nodes; then Mesh::nodes
+  /// is reduced to the vertices (of cells and boundary lines), in file order, so that the
+  /// vertex-only view of the mesh is the same as for a straight mesh.
+  void finish_curved() {
+    const int q = quad_order_;
+    m_.curved.order = q;
+    m_.curved.points.resize(ho_nodes_.size());
+    for (size_t k = 0; k < ho_nodes_.size(); ++k) m_.curved.points[k] = m_.nodes[ho_nodes_[k]];
+    std::vector<int> renum(m_.nodes.size(), -1);
+    for (const Cell& c : m_.cells)
+      for (int i = 0; i < c.nv; ++i) renum[c.v[i]] = 0;
+    for (const RawLine& l : lines_) renum[l.a] = renum[l.b] = 0;
+    std::vector<Vec2> kept;
+    for (size_t i = 0; i < renum.size(); ++i)
+      if (renum[i] == 0) {
+        renum[i] = static_cast<int>(kept.size());
+        kept.push_back(m_.nodes[i]);
+      }
+    m_.nodes = std::move(kept);
+    for (Cell& c : m_.cells)
+      for (int i = 0; i < c.nv; ++i) c.v[i] = renum[c.v[i]];
+    for (RawLine& l : lines_) {
+      l.a = renum[l.a];
+      l.b = renum[l.b];
+    }
   }
 
   void read_elements4() {
@@ -281,7 +327,7 @@ class MshReader {
     c_.any_size("number of elements");
     c_.any_size("minimum element tag");
     c_.any_size("maximum element tag");
-    long long nodes[8];
+    long long nodes[25];
     for (long long b = 0; b < nblocks; ++b) {
       const long long dim = c_.any_int("entity dimension");
       const long long entity = c_.any_int("entity tag");
@@ -304,7 +350,7 @@ class MshReader {
     if (!have_nodes_) c_.fail("missing $Nodes section (it must come before $Elements)");
     have_elements_ = true;
     const long long n = bounded(c_.integer("number of elements"), "number of elements");
-    long long nodes[8];
+    long long nodes[25];
     if (!c_.binary) {
       for (long long e = 0; e < n; ++e) {
         const long long tag = c_.integer("element tag");

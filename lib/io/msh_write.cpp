@@ -10,13 +10,17 @@
 #include <charconv>
 #include <cmath>
 #include <ostream>
+#include <map>
 #include <set>
 #include <string>
+#include <unordered_map>
 
 #include "core/atomic_file.hpp"
+#include "io/gmsh_options.hpp"
 #include "core/error.hpp"
 #include "io/gll_scheme.hpp"
 #include "io/msh.hpp"
+#include "mesh/curved.hpp"
 
 namespace quadapt {
 
@@ -104,6 +108,12 @@ void check_writable(const Mesh& m) {
   for (const CellField& f : m.cell_fields)
     if (f.ncomp < 1 || f.values.size() != static_cast<size_t>(m.num_cells()) * f.ncomp)
       throw Error("write_msh: field '" + f.name + "' does not match the cell count");
+  if (m.is_curved()) {
+    if (gmsh_quad_type(m.geometric_order()) < 0 || !m.all_quads())
+      throw Error("write_msh: curved meshes of order " + std::to_string(m.geometric_order()) + " with triangles or q > 4");
+    if (m.curved.points.size() != static_cast<size_t>(m.num_cells()) * m.curved.per_cell())
+      throw Error("write_msh: curved control points do not match the cell count");
+  }
   for (const CellNodeField& f : m.cell_node_fields) {
     if (f.ncomp < 1 || f.per_cell < 1 || f.values.size() != static_cast<size_t>(m.num_cells()) * f.per_cell * f.ncomp)
       throw Error("write_msh: field '" + f.name + "' does not match the cell count");
@@ -111,6 +121,59 @@ void check_writable(const Mesh& m) {
       throw Error("write_msh: field '" + f.name + "' of degree " + std::to_string(f.degree) + " has " +
                   std::to_string(f.per_cell) + " values per cell");
   }
+}
+
+/// Node numbering of a curved mesh: the vertices are nodes 1..N; every other control point
+/// gets the next number at its first occurrence (cells in order, points in Gmsh order), points
+/// with bit-identical coordinates sharing one node. cell_nodes[c] lists the (q+1)^2 node
+/// numbers of cell c in Gmsh order, edge_nodes maps a boundary edge to its q+1 node numbers.
+struct CurvedNumbering {
+  std::vector<Vec2> extra;                   // nodes N+1, N+2, ...
+  std::vector<std::vector<long long>> cell_nodes;
+  std::vector<std::vector<long long>> boundary_nodes;  // per Mesh::boundary edge, Gmsh line order
+};
+
+CurvedNumbering number_curved(const Mesh& m) {
+  CurvedNumbering r;
+  const int q = m.geometric_order(), n1 = q + 1, nn = m.num_nodes();
+  const std::vector<int> perm = gmsh_quad_node_order(q);
+  std::map<std::pair<double, double>, long long> at;
+  std::map<std::pair<int, int>, std::pair<int, int>> edge_of;  // (v0, v1) oriented -> (cell, edge)
+  r.cell_nodes.resize(m.num_cells());
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const Vec2* X = m.cell_points(c);
+    std::vector<long long> lex(n1 * n1, -1);
+    lex[0] = m.cells[c].v[0] + 1;
+    lex[q] = m.cells[c].v[1] + 1;
+    lex[q + n1 * q] = m.cells[c].v[2] + 1;
+    lex[n1 * q] = m.cells[c].v[3] + 1;
+    for (int k = 0; k < n1 * n1; ++k) {
+      if (lex[k] > 0) continue;
+      auto [it, fresh] = at.emplace(std::make_pair(X[k].x(), X[k].y()), nn + static_cast<long long>(r.extra.size()) + 1);
+      if (fresh) r.extra.push_back(X[k]);
+      lex[k] = it->second;
+    }
+    for (int k : perm) r.cell_nodes[c].push_back(lex[k]);
+    for (int e = 0; e < 4; ++e) edge_of[{m.cells[c].v[e], m.cells[c].v[(e + 1) % 4]}] = {c, e};
+  }
+  for (const BoundaryEdge& be : m.boundary) {
+    auto it = edge_of.find({be.v[0], be.v[1]});
+    bool reversed = false;
+    if (it == edge_of.end()) {
+      it = edge_of.find({be.v[1], be.v[0]});
+      reversed = true;
+    }
+    if (it == edge_of.end()) throw Error("write_msh: a boundary edge of a curved mesh is not an edge of a cell");
+    const auto [c, e] = it->second;
+    std::vector<int> ed = edge_control_points(q, e);
+    if (reversed) std::reverse(ed.begin(), ed.end());
+    std::vector<long long> lex(n1 * n1);
+    for (size_t k = 0; k < perm.size(); ++k) lex[perm[k]] = r.cell_nodes[c][k];
+    std::vector<long long> line = {lex[ed[0]], lex[ed[q]]};
+    for (int k = 1; k < q; ++k) line.push_back(lex[ed[k]]);
+    r.boundary_nodes.push_back(std::move(line));
+  }
+  return r;
 }
 
 void write_view_header(Out& o, const std::string& name, const std::string& scheme, int ncomp, int ncells) {
@@ -124,7 +187,11 @@ void write_view_header(Out& o, const std::string& name, const std::string& schem
 void write_msh(const Mesh& m, std::ostream& os) {
   check_writable(m);
   Out o(os);
-  const int nc = m.num_cells(), nn = m.num_nodes(), ne = static_cast<int>(m.boundary.size());
+  const int nc = m.num_cells(), ne = static_cast<int>(m.boundary.size());
+  const int q = m.geometric_order();
+  const CurvedNumbering cn = q > 1 ? number_curved(m) : CurvedNumbering{};
+  const int nn = m.num_nodes() + static_cast<int>(cn.extra.size());
+  auto node_at = [&](int i) -> const Vec2& { return i < m.num_nodes() ? m.nodes[i] : cn.extra[i - m.num_nodes()]; };
   o << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
 
   o << "$PhysicalNames\n" << static_cast<int>(m.groups.size()) + 1 << '\n';
@@ -138,10 +205,10 @@ void write_msh(const Mesh& m, std::ostream& os) {
     box[2] = box[3] = -INFINITY;
     for (int i = b; i < e; ++i)
       for (int v : nodes_of(i)) {
-        box[0] = std::min(box[0], m.nodes[v].x());
-        box[1] = std::min(box[1], m.nodes[v].y());
-        box[2] = std::max(box[2], m.nodes[v].x());
-        box[3] = std::max(box[3], m.nodes[v].y());
+        box[0] = std::min(box[0], node_at(v).x());
+        box[1] = std::min(box[1], node_at(v).y());
+        box[2] = std::max(box[2], node_at(v).x());
+        box[3] = std::max(box[3], node_at(v).y());
       }
     if (b >= e) box[0] = box[1] = box[2] = box[3] = 0;
   };
@@ -165,21 +232,33 @@ void write_msh(const Mesh& m, std::ostream& os) {
   o << "$Nodes\n1 " << nn << " 1 " << nn << "\n2 1 0 " << nn << '\n';
   for (int i = 1; i <= nn; ++i) o << i << '\n';
   for (const Vec2& p : m.nodes) o << p.x() << ' ' << p.y() << " 0\n";
+  for (const Vec2& p : cn.extra) o << p.x() << ' ' << p.y() << " 0\n";
   o << "$EndNodes\n";
 
   const std::vector<Run> blocks = runs(nc, [&](int i) { return m.cells[i].nv; });
   o << "$Elements\n" << curves.size() + blocks.size() << ' ' << nc + ne << ' ' << (nc + ne > 0 ? 1 : 0) << ' '
     << nc + ne << '\n';
   for (size_t k = 0; k < curves.size(); ++k) {
-    o << "1 " << static_cast<int>(k) + 1 << " 1 " << curves[k].end - curves[k].begin << '\n';
-    for (int i = curves[k].begin; i < curves[k].end; ++i)
-      o << nc + i + 1 << ' ' << m.boundary[i].v[0] + 1 << ' ' << m.boundary[i].v[1] + 1 << '\n';
+    o << "1 " << static_cast<int>(k) + 1 << ' ' << gmsh_line_type(q) << ' ' << curves[k].end - curves[k].begin << '\n';
+    for (int i = curves[k].begin; i < curves[k].end; ++i) {
+      o << nc + i + 1;
+      if (q > 1) {
+        for (long long v : cn.boundary_nodes[i]) o << ' ' << v;
+      } else {
+        o << ' ' << m.boundary[i].v[0] + 1 << ' ' << m.boundary[i].v[1] + 1;
+      }
+      o << '\n';
+    }
   }
   for (const Run& b : blocks) {
-    o << "2 1 " << (b.key == 3 ? 2 : 3) << ' ' << b.end - b.begin << '\n';
+    o << "2 1 " << (b.key == 3 ? 2 : gmsh_quad_type(q)) << ' ' << b.end - b.begin << '\n';
     for (int c = b.begin; c < b.end; ++c) {
       o << c + 1;
-      for (int i = 0; i < b.key; ++i) o << ' ' << m.cells[c].v[i] + 1;
+      if (q > 1) {
+        for (long long v : cn.cell_nodes[c]) o << ' ' << v;
+      } else {
+        for (int i = 0; i < b.key; ++i) o << ' ' << m.cells[c].v[i] + 1;
+      }
       o << '\n';
     }
   }
@@ -231,6 +310,7 @@ void write_msh(const Mesh& m, std::ostream& os) {
 void write_msh(const Mesh& mesh, const std::string& path) {
   check_writable(mesh);
   atomic_write(path, [&](std::ostream& os) { write_msh(mesh, os); });
+  write_gmsh_options(mesh, path);
 }
 
 }  // namespace quadapt

@@ -217,6 +217,16 @@ void Background::set_mesh_cell_metrics(const std::vector<Mat2>& M) {
   finish();
 }
 
+Mat2 Background::partition_metric(int c) const {
+  if (!metric_cells_) return Mat2::Identity();
+  const Mat2 G = cells_[c].M.transpose() * cells_[c].M;
+  if (cell_alpha_ == 1.0) return G / G.trace();
+  Eigen::SelfAdjointEigenSolver<Mat2> es(G);
+  const Eigen::Vector2d l = es.eigenvalues().cwiseMax(1e-300).array().pow(cell_alpha_);
+  const Mat2 Ga = es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
+  return Ga / Ga.trace();
+}
+
 Background Background::scaled(double f) const {
   if (!(f > 0) || !std::isfinite(f)) throw InputError("", "metric scale factor must be positive");
   Background b = *this;

@@ -2,12 +2,12 @@
 // The metric field M(y) of the L_p-CVT generator on its background mesh (thesis §4.1).
 //
 // The background mesh covers the domain Omega. Each of its cells carries the frame as
-// M = V^-1 (CellField "Vinv", 9 components, row-major 3x3, M in the upper-left 2x2; DESIGN.md
+// M = V^-1 (CellField "Vinv", 9 components, row-major 3x3, M in the upper-left 2x2; docs/design.md
 // §3), so M is piecewise constant; or the metric is an analytic function M(y) (validation
 // mode, thesis eq. 6.1). The generator works with the EFFECTIVE metric  M_eff = scale * M :
 // a segment u has metric length |M_eff u|, and the L_p-CVT places points one metric unit apart.
 //
-// Sizes (DESIGN.md §4): V = R(theta) diag(h1, h2); the frame's representative parallelogram
+// Sizes (docs/design.md §4): V = R(theta) diag(h1, h2); the frame's representative parallelogram
 // spans +-v, +-w, so the FINAL all-quad mesh should have edges 2 h1 x 2 h2. The final mesh is
 // made by recombining lpcvt's triangles into quads (edges = point spacing) and splitting every
 // quad into four (halving edges), so the points must be 4 h1 x 4 h2 apart: scale = 1/4, i.e.
@@ -115,16 +115,18 @@ class Background {
   double scale() const { return scale_; }
 
   /// Voronoi cells in the metric (metric_graph.hpp): the partition of integration cell c uses
-  /// G_c = M^T M / tr(M^T M) of its (centroid) metric instead of the identity. Off by default
-  /// (the thesis's Euclidean cells); the frame defaults turn it on.
-  void set_metric_cells(bool on) { metric_cells_ = on; }
-  bool metric_cells() const { return metric_cells_; }
-  /// The partition metric of integration cell c: G_c (above) or the identity.
-  Mat2 partition_metric(int c) const {
-    if (!metric_cells_) return Mat2::Identity();
-    const Mat2 G = cells_[c].M.transpose() * cells_[c].M;
-    return G / G.trace();
+  /// G_c = (M^T M)^alpha / tr (M^T M)^alpha of its (centroid) metric instead of the identity:
+  /// alpha = 1 the metric's own cells, 0 Euclidean cells (the thesis's), between: the
+  /// anisotropy of the cells is the metric's to the power alpha. Off by default; the frame
+  /// defaults turn it on (lpcvt --cells, --cell-anisotropy).
+  void set_metric_cells(bool on, double alpha = 1.0) {
+    metric_cells_ = on;
+    cell_alpha_ = alpha;
   }
+  bool metric_cells() const { return metric_cells_; }
+  double cell_anisotropy() const { return cell_alpha_; }
+  /// The partition metric of integration cell c: G_c (above) or the identity.
+  Mat2 partition_metric(int c) const;
 
   /// M_eff at y, y in integration cell c.
   Mat2 metric(int c, const Vec2& y) const;
@@ -158,6 +160,7 @@ class Background {
   std::shared_ptr<const AnalyticMetric> analytic_;
   double scale_ = 1;
   bool metric_cells_ = false;
+  double cell_alpha_ = 1.0;
   double area_ = 0, metric_area_ = 0;
   Vec2 lo_{0, 0}, hi_{0, 0};
   // locator: nx*ny buckets, CSR lists of cells

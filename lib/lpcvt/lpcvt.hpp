@@ -107,6 +107,19 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
 
 /// Report figures: points, requested_points, triangles, iterations, evaluations, cycles,
 /// energy, grad_norm, converged, stop, and the convergence history (per iteration and per cycle).
+/// Point spacing in target cell edges is 1 / kSplit (recombine's split into four; run.hpp, Sizes).
+constexpr double kSplit = 0.5;
+
+/// The default M_eff / M of a quadapt-convention frame (frame/frame.hpp): kSplit * the cell-metric
+/// factor = 1/4.
+double frame_metric_scale();
+
+/// Adds the cell field "Vinv" and its $FrameConvention tag to the triangles m (set_frame_field):
+/// M_eff / frame_metric_scale() = 4 M_eff of the background cell at each centroid (the quadapt
+/// convention, as --write-frame: the frame actually meshed, after
+/// --complexity/--smooth/--gradation), so that recombine matches in the metric without --frame.
+void attach_frame(Mesh& m, const Background& bg);
+
 /// Makes the triangulation m Delaunay in bg's metric (metric_graph.hpp): Lawson flips with the
 /// metric of the background cell at each edge's midpoint; boundary edges are never flipped.
 /// Returns the number of flips.

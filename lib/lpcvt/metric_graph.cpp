@@ -70,7 +70,7 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
     if (T[u].nb[l] != t) continue;
     const int d = T[u].v[l];
     if (T[u].v[(l + 1) % 3] != q || T[u].v[(l + 2) % 3] != p) continue;  // stale entry
-    const Eigen::Matrix2d M = metric(0.5 * (x[p] + x[q]));
+    const Eigen::Matrix2d M = metric(x[p], x[q]);
     if (!(metric_incircle(M, x[c], x[p], x[q], x[d]) > tol)) continue;
     // strictly convex quadrilateral c p d q: both new triangles positive (relative to size)
     const double s = (x[d] - x[c]).squaredNorm();

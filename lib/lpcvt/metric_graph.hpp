@@ -43,9 +43,9 @@ struct MetricGraph {
   const int* nbr_end(int i) const { return adj.data() + ptr[i + 1]; }
 };
 
-/// The metric (2x2, any matrix whose M^T M is the Riemannian metric) to use for the edge with
-/// midpoint y.
-using EdgeMetric = std::function<Eigen::Matrix2d(const Vec2& y)>;
+/// The metric (2x2, any matrix whose M^T M is the Riemannian metric) to use for the edge (a, b);
+/// the zero matrix: never flip it.
+using EdgeMetric = std::function<Eigen::Matrix2d(const Vec2& a, const Vec2& b)>;
 
 /// Lawson flips of the triangulation `tris` (CCW triangles over `sites`, e.g. the Euclidean
 /// Delaunay triangulation) by the metric in-circle test, then the neighbour lists.

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "lpcvt/energy.hpp"
 #include "lpcvt/metric_filter.hpp"
 #include "lpcvt/point_quality.hpp"
@@ -45,8 +46,6 @@ void LpcvtOptions::set_init(const std::string& init, bool analytic) {
   }
 }
 
-double frame_metric_scale() { return kSplit * Frame::cell_metric_factor(); }
-
 namespace {
 
 void say(const std::function<void(const std::string&)>& log, const std::string& s) {
@@ -68,16 +67,16 @@ void finish_background(Background& bg, const LpcvtJob& job, nlohmann::json& rep,
       rep["smoothing"] = filter_json(f);
       rep["smoothing"]["passes"] = job.smooth;
       say(log, "metric smoothed (" + std::to_string(job.smooth) + " log-Euclidean passes): largest neighbour size ratio " +
-                   std::to_string(f.max_ratio_before) + " -> " + std::to_string(f.max_ratio_after));
+                   sci(f.max_ratio_before) + " -> " + sci(f.max_ratio_after));
     }
     if (job.gradation > 0) {
       const FilterReport f = grade_metric(bg, job.gradation);
       rep["gradation"] = filter_json(f);
       rep["gradation"]["growth"] = job.gradation;
       rep["gradation"]["updates"] = f.passes;
-      say(log, "metric graded (growth " + std::to_string(job.gradation) + " per unit length, " + std::to_string(f.passes) +
+      say(log, "metric graded (growth " + sci(job.gradation) + " per unit length, " + std::to_string(f.passes) +
                    " updates): " + std::to_string(f.cells_changed) + " cells refined, largest neighbour size ratio " +
-                   std::to_string(f.max_ratio_before) + " -> " + std::to_string(f.max_ratio_after));
+                   sci(f.max_ratio_before) + " -> " + sci(f.max_ratio_after));
     }
   }
   // Final all-quad cells the background asks for (docs/lpcvt.md, Sizes).
@@ -91,16 +90,17 @@ void finish_background(Background& bg, const LpcvtJob& job, nlohmann::json& rep,
     rep["complexity"] = job.complexity;
     rep["degree"] = job.degree;
     rep["metric_rescale"] = f;
-    say(log, "--complexity " + std::to_string(job.complexity) + " at degree " + std::to_string(job.degree) + ": " +
-                 std::to_string(target) + " final cells (the frame asks " + std::to_string(frame_cells) +
-                 "): metric scaled by " + std::to_string(f));
+    say(log, "--complexity " + sci(job.complexity) + " at degree " + std::to_string(job.degree) + ": " +
+                 sci(target) + " final cells (the frame asks " + sci(frame_cells) +
+                 "): metric scaled by " + sci(f));
   }
   rep["target_cells"] = bg.metric_area() / (kSplit * kSplit);
   if (job.cells_per_triangle != 2) bg = bg.scaled(std::sqrt(2 / job.cells_per_triangle));
   rep["cells_per_triangle"] = job.cells_per_triangle;
   rep["options"]["metric_scale"] = bg.scale();
-  bg.set_metric_cells(job.metric_cells);
+  bg.set_metric_cells(job.metric_cells, job.cell_anisotropy);
   rep["options"]["cells"] = job.metric_cells ? "metric" : "euclidean";
+  rep["options"]["cell_anisotropy"] = job.cell_anisotropy;
 }
 
 }  // namespace
@@ -152,10 +152,10 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
   const AlignmentStats alp = voronoi_alignment(bg, r.sites, r.nfixed, true);
   rep["voronoi_alignment_mean_deg"] = al.mean_deviation;
   rep["voronoi_principal_alignment_mean_deg"] = alp.mean_deviation;
-  say(log, "largest triangle angles (median): " + std::to_string(am.median_largest) + " deg in the metric, " +
-               std::to_string(ap.median_largest) + " deg in physical space; Voronoi edges off the metric axes by " +
-               std::to_string(al.mean_deviation) + " deg, off the principal directions by " +
-               std::to_string(alp.mean_deviation) + " deg (length-weighted means)");
+  say(log, "largest triangle angles (median): " + sci(am.median_largest) + " deg in the metric, " +
+               sci(ap.median_largest) + " deg in physical space; Voronoi edges off the metric axes by " +
+               sci(al.mean_deviation) + " deg, off the principal directions by " +
+               sci(alp.mean_deviation) + " deg (length-weighted means)");
   return r;
 }
 

@@ -17,9 +17,6 @@
 
 namespace quadapt::lpcvt {
 
-/// Point spacing in target cell edges is 1 / kSplit (recombine's split into four).
-constexpr double kSplit = 0.5;
-
 /// Everything the lpcvt tool sets besides LpcvtOptions.
 struct LpcvtJob {
   LpcvtOptions lpcvt = LpcvtOptions::for_frame();
@@ -30,10 +27,8 @@ struct LpcvtJob {
   int degree = -1;
   double cells_per_triangle = 2;  ///< final cells per triangle recombine gives: the point count is sized by 2/R
   bool metric_cells = true;       ///< Voronoi cells in the metric (Background::set_metric_cells); false: the thesis's
+  double cell_anisotropy = 0.9;   ///< with metric_cells: the cells' anisotropy is the metric's to this power (0..1)
 };
-
-/// The default M_eff / M of a quadapt-convention frame: kSplit * cell-metric factor = 1/4.
-double frame_metric_scale();
 
 /// The background of a frame: M_eff = scale * M, then --smooth/--gradation, the complexity
 /// rescale and the cells-per-triangle factor. Writes report keys smoothing, gradation,

@@ -1,5 +1,5 @@
 #pragma once
-// The boundary of a mesh from its free edges, split into named curves (DESIGN.md section 3).
+// The boundary of a mesh from its free edges, split into named curves (docs/design.md §3).
 //
 // Files without boundary lines (PHiLiP's frame files) or with boundary lines on only part of
 // the boundary get the missing boundary from the mesh itself: the free edges (edges of exactly

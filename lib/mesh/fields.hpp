@@ -3,7 +3,7 @@
 //
 //  CellField      -> $ElementData:      ncomp values per cell (1 = scalar, 9 = 3x3 tensor
 //                                       row-major, e.g. the frame "Vinv" with M = V^-1 in the
-//                                       upper-left 2x2, zero-padded; DESIGN.md section 3).
+//                                       upper-left 2x2, zero-padded; docs/design.md §3).
 //  CellNodeField  -> $ElementNodeData:  values at `per_cell` points of each cell. For the DG
 //                                       solution "u" of degree p: per_cell = (p+1)^2 nodal
 //                                       values at the tensor-product Gauss-Lobatto points, index

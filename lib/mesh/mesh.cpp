@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/error.hpp"
+#include "mesh/curved.hpp"
 
 namespace quadapt {
 
@@ -71,6 +72,23 @@ void Mesh::set_field(CellNodeField f) {
 
 double cell_area(const Mesh& m, int c) {
   const Cell& cell = m.cells[c];
+  if (m.is_curved() && cell.nv == 4) {
+    // det J has degree 2q-1 in each variable: q+1 Gauss points are exact.
+    static const double x3[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+    static const double w3[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+    static const double x4[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
+    static const double w4[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
+    const bool four = m.geometric_order() >= 3;
+    const int n = four ? 4 : 3;
+    const double* x = four ? x4 : x3;
+    const double* w = four ? w4 : w3;
+    CellMap G(m, c);
+    double a = 0;
+    Vec2 t1, t2;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) a += w[i] * w[j] * G.jacobian(x[i], x[j], t1, t2);
+    return a;
+  }
   double a = 0;
   for (int i = 0; i < cell.nv; ++i) {
     const Vec2& p = m.nodes[cell.v[i]];
@@ -101,6 +119,7 @@ Vec2 cell_centroid(const Mesh& m, int c) {
 
 Vec2 map_to_physical(const Mesh& m, int c, double xi, double eta) {
   const Cell& cell = m.cells[c];
+  if (m.is_curved() && cell.nv == 4) return CellMap(m, c).map(xi, eta);
   if (cell.nv == 3) {
     return m.nodes[cell.v[0]] * (1 - xi - eta) + m.nodes[cell.v[1]] * xi + m.nodes[cell.v[2]] * eta;
   }
@@ -112,6 +131,13 @@ Vec2 map_to_physical(const Mesh& m, int c, double xi, double eta) {
 Eigen::Matrix2d map_jacobian(const Mesh& m, int c, double xi, double eta) {
   const Cell& cell = m.cells[c];
   Eigen::Matrix2d J;
+  if (m.is_curved() && cell.nv == 4) {
+    Vec2 t1, t2;
+    CellMap(m, c).jacobian(xi, eta, t1, t2);
+    J.col(0) = t1;
+    J.col(1) = t2;
+    return J;
+  }
   if (cell.nv == 3) {
     J.col(0) = m.nodes[cell.v[1]] - m.nodes[cell.v[0]];
     J.col(1) = m.nodes[cell.v[2]] - m.nodes[cell.v[0]];

@@ -1,5 +1,5 @@
 #pragma once
-// The 2D mesh of quadapt: straight-sided 4-node quads and/or 3-node triangles, boundary edges
+// The 2D mesh of quadapt: 4-node quads and/or 3-node triangles, boundary edges
 // grouped into named physical curves, and per-cell fields. Conforming and non-conforming
 // (hanging-node, 2:1) quad meshes are both valid: a hanging node is simply a node that lies on
 // the interior of a neighbour's edge; face connectivity is derived in mesh/topology.hpp.
@@ -9,6 +9,11 @@
 //  - Cells are counter-clockwise. A quad's vertices v[0..3] map to the reference square
 //    [-1,1]^2 corners (-1,-1), (1,-1), (1,1), (-1,1) — the same as Gmsh's reference quad.
 //    Local edge e of a cell joins v[e] and v[(e+1) % nv].
+//  - Curved quads (geometric order q = 2..4; mesh/curved.hpp) keep the vertex-only view above
+//    unchanged — nodes holds only vertices, Cell::v the corners — and add the control points of
+//    each cell's Lagrange map in Mesh::curved. Tools that need only vertices ignore it; tools
+//    that integrate on cells must either use the curved map (mesh/curved.hpp CellMap) or
+//    refuse curved meshes (validate_mesh does unless ValidateOptions::allow_curved).
 //  - Fields are stored per cell (see mesh/fields.hpp) and travel with the mesh through I/O.
 #include <Eigen/Core>
 #include <array>
@@ -41,6 +46,14 @@ struct BoundaryGroup {
   std::string name;
 };
 
+/// High-order geometry of the cells (mesh/curved.hpp): order q and, per cell, (q+1)^2 control
+/// points (lexicographic on the equispaced reference grid). order 1 and no points: straight.
+struct CurvedGeometry {
+  int order = 1;
+  std::vector<Vec2> points;  ///< #cells * (order+1)^2
+  int per_cell() const { return (order + 1) * (order + 1); }
+};
+
 struct Mesh {
   std::vector<Vec2> nodes;               ///< #nodes, physical coordinates (x, y)
   std::vector<Cell> cells;               ///< #cells
@@ -48,6 +61,8 @@ struct Mesh {
   std::vector<BoundaryGroup> groups;     ///< boundary groups; BoundaryEdge::group indexes this
   std::string domain_name = "domain";    ///< physical name of the 2D region
   int domain_tag = 1;                    ///< physical tag of the 2D region
+
+  CurvedGeometry curved;                 ///< empty (order 1) for straight-sided cells
 
   std::vector<CellField> cell_fields;          ///< $ElementData views (theta, rho, B, h, Vinv, dwr, ...)
   std::vector<CellNodeField> cell_node_fields; ///< $ElementNodeData views (the DG solution u, ...)
@@ -62,6 +77,11 @@ struct Mesh {
   int num_triangles() const;
   bool all_quads() const { return num_triangles() == 0; }
   bool all_triangles() const { return num_quads() == 0; }
+  /// Geometric order q of the cells (1: straight-sided).
+  int geometric_order() const { return curved.order; }
+  bool is_curved() const { return curved.order > 1; }
+  /// The (q+1)^2 control points of curved cell c (is_curved() only).
+  const Vec2* cell_points(int c) const { return curved.points.data() + static_cast<size_t>(c) * curved.per_cell(); }
 
   /// Index of the boundary group called `name`, or -1.
   int find_group(const std::string& name) const;
@@ -82,13 +102,15 @@ struct Mesh {
 
 // ----------------------------------------------------------------------------- geometry
 
-/// Signed area of cell c (positive when counter-clockwise). Quads: shoelace over 4 vertices.
+/// Signed area of cell c (positive when counter-clockwise). Quads: shoelace over 4 vertices;
+/// curved quads: Gauss quadrature of det J (exact for the polynomial map).
 double cell_area(const Mesh& m, int c);
 /// Sum of cell areas.
 double total_area(const Mesh& m);
 /// Centroid (area-weighted) of cell c.
 Vec2 cell_centroid(const Mesh& m, int c);
-/// Bilinear (quad) or linear (triangle) map of reference point (xi, eta) to physical space.
+/// Bilinear (quad) or linear (triangle) map of reference point (xi, eta) to physical space
+/// (the Lagrange map of order q for curved quads).
 /// Quads: reference square [-1,1]^2. Triangles: reference triangle (0,0),(1,0),(0,1).
 Vec2 map_to_physical(const Mesh& m, int c, double xi, double eta);
 /// Jacobian d(x,y)/d(xi,eta) (2x2, columns = d/dxi, d/deta) of that map at (xi, eta).

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "mesh/curved.hpp"
 #include "mesh/topology.hpp"
 
 namespace quadapt {
@@ -109,6 +110,26 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
   if (bad > 0)
     fail(cell_label(m, first_bad) + " is " + first_problem +
          (bad > 1 ? " (" + std::to_string(bad) + " invalid cells in all)" : ""));
+
+  if (m.is_curved()) {
+    const int q = m.geometric_order();
+    if (!opt.allow_curved)
+      fail("the mesh has curved cells (geometric order " + std::to_string(q) +
+           "); this tool supports only straight-sided cells (order 1) so far");
+    if (q > kMaxGeometricOrder || !m.all_quads()) fail("curved cells must be quads of order 2 to 4");
+    if (m.curved.points.size() != static_cast<size_t>(nc) * m.curved.per_cell())
+      fail("curved geometry has " + std::to_string(m.curved.points.size()) + " control points, expected " +
+           std::to_string(nc) + " cells x " + std::to_string(m.curved.per_cell()));
+    const int corner[4] = {0, q, q + (q + 1) * q, (q + 1) * q};
+    for (int c = 0; c < nc; ++c)
+      for (int k = 0; k < 4; ++k)
+        if (m.cell_points(c)[corner[k]] != m.nodes[m.cells[c].v[k]])
+          fail(cell_label(m, c) + ": curved control point of corner " + std::to_string(k + 1) + " is not its vertex");
+    const ScaledJacobian sj = min_scaled_jacobian(m);
+    if (!(sj.min > 0))
+      fail(cell_label(m, sj.cell) + " is invalid: its curved map has a non-positive Jacobian (scaled Jacobian " +
+           std::to_string(sj.min) + ")");
+  }
 
   const int ng = static_cast<int>(m.groups.size());
   for (size_t e = 0; e < m.boundary.size(); ++e) {

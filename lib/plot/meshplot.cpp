@@ -317,6 +317,7 @@ std::string render_mesh_svg(const Mesh& m, const MeshPlotOptions& opt, MeshPlotS
   if (frame) {
     struct G {
       Vec2 c, v, w;
+      int cell;
     };
     std::vector<G> gl;
     const SizeConvention convention = stated_convention(m, opt.source);
@@ -324,23 +325,21 @@ std::string render_mesh_svg(const Mesh& m, const MeshPlotOptions& opt, MeshPlotS
       Vec2 ctr = cell_centroid(m, c);
       if (!inside(ctr, W)) continue;
       auto [v, w] = frame_vectors(*cf, c, convention);
-      gl.push_back({ctr, v, w});
+      gl.push_back({ctr, v, w, c});
     }
     S.glyphs = static_cast<int>(gl.size());
-    const double extent = std::max(W.x1 - W.x0, W.y1 - W.y0);
     const double gsw = std::clamp(cell_px / 12.0, 0.3, 1.2);
     if (opt.glyph == GlyphStyle::Cross) {
-      std::vector<double> inv;
-      inv.reserve(2 * gl.size());
-      for (const auto& g : gl) {
-        inv.push_back(1.0 / g.v.norm());
-        inv.push_back(1.0 / g.w.norm());
-      }
-      const double ref = percentile(inv, 0.98);
-      const double s = (std::isfinite(ref) && ref > 0) ? 0.025 * extent * opt.glyph_scale / ref : 0;
+      // Sized by the cell, not by M: the longer arm is 0.45 sqrt(|K|) (times glyph_scale), the
+      // other in the ratio of 1/|v| : 1/|w| (long along the small size, thesis Fig. 6.5), so a
+      // glyph is readable in coarse and fine cells alike, at every zoom.
       PathData dv, dw;
       for (const auto& g : gl) {
-        const double lv = s / g.v.squaredNorm(), lw = s / g.w.squaredNorm();  // (v/|v|) * s/|v|
+        const double iv = 1.0 / g.v.norm(), iw = 1.0 / g.w.norm();
+        const double big = std::max(iv, iw);
+        if (!(big > 0) || !std::isfinite(big)) continue;
+        const double L = 0.45 * opt.glyph_scale * std::sqrt(std::abs(cell_area(m, g.cell)));
+        const double lv = L * (iv / big) * iv, lw = L * (iw / big) * iw;  // along v/|v|, w/|w|
         Vec2 a = g.c - lv * g.v, b = g.c + lv * g.v;
         dv.move(px(a), py(a));
         dv.line(px(b), py(b));

@@ -12,13 +12,13 @@
 //     - a CellNodeField of vertex values (degree -1): the mean per cell;
 //     optionally as log10 |value| (the DWR, thesis Fig. 6.21), with a colour bar;
 //  2. the mesh edges (and the boundary edges thicker);
-//  3. the frame, when the field is the 9-component CellField "Vinv" (DESIGN.md section 3:
+//  3. the frame, when the field is the 9-component CellField "Vinv" (docs/design.md §3:
 //     M = upper-left 2x2 of the row-major 3x3, V = M^-1, columns of V are the frame vectors
 //     v, w with |v| = h1, |w| = h2, eq. 3.11/3.13), as one glyph per cell centroid:
 //     - Cross (default, thesis Fig. 6.5): the two axes +-v/|v| and +-w/|w| with half-lengths
-//       proportional to 1/|v| and 1/|w| ("1/h": long arms where small sizes are requested),
-//       v in red, w in blue; the 98th percentile of half-lengths is 2.5% of the window's size
-//       times glyph_scale;
+//       in the ratio 1/|v| : 1/|w| (long arm along the small size), v in red, w in blue, sized
+//       by the cell: the longer half-arm is 0.45 sqrt(|K|) times glyph_scale, so glyphs are
+//       readable in coarse and fine cells alike;
 //     - Parallelogram: the target element c +- v +- w at true size (edges 2 h1 x 2 h2,
 //       eq. 5.1) times glyph_scale.
 // A window (x0, x1, y0, y1) restricts the picture to a close-up (cells outside are skipped,

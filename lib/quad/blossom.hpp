@@ -5,7 +5,7 @@
 // Gmsh as a built-in ("geo") plane surface: one geo point per boundary node, one geo line per
 // boundary edge, one curve loop per boundary loop (outer first), the nodes and triangles
 // injected as that surface's mesh with parametric coordinates (a discrete surface gave
-// flipped, overlapping elements here: ../shared/LIBRARY-FACTS.md). Then
+// flipped, overlapping elements here: docs/design.md §6). Then
 // Mesh.RecombinationAlgorithm = 1 (Blossom: minimum-cost perfect matching of the triangles'
 // dual graph, cost = deviation of the quad's angles from 90 degrees in physical space) and
 // Gmsh's model::mesh::recombine() (through lib/gmsh/gmsh_recombine.hpp).

@@ -85,10 +85,14 @@ Mesh metric_pairing(const Mesh& tri, const std::vector<Eigen::Matrix2d>& M,
       F = llt.matrixL().transpose();  // |F e|^2 = e^T G e
     }
     const auto& P = tri.nodes;
+    // a candidate when strictly convex in physical space (a valid quad); its metric quality
+    // (0 when not convex in the averaged metric) ranks it
+    const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
+    if (!(metric_quad_quality(I, P[quad[0]], P[quad[1]], P[quad[2]], P[quad[3]]) > 0)) continue;
     const double q = metric_quad_quality(F, P[quad[0]], P[quad[1]], P[quad[2]], P[quad[3]]);
-    if (!(q > opt.min_quality)) continue;
+    if (opt.min_quality > 0 && !(q > opt.min_quality)) continue;
     auto e = g.addEdge(node[x.t], node[y.t]);
-    weight[e] = std::lround(1000.0 * (q - opt.min_quality));
+    weight[e] = std::lround(1000.0 * (q + opt.pair_bonus));
     pair_of[e] = static_cast<int>(pairs.size());
     pairs.push_back({x.t, y.t, quad, q});
   }

@@ -10,14 +10,16 @@
 // 45-degree parallelograms in the metric across the domain).
 //
 // Here: nodes = triangles, an edge for every interior mesh edge whose two triangles form a
-// strictly convex quad; its quality in the metric
+// strictly convex quad (in physical space: a valid cell); its quality in the metric
 //     q = 1 - max_k |theta_k - 90 deg| / 90 deg          (theta_k the quad's corner angles)
 // with the corners mapped by L^T, L L^T = (G_a + G_b) / 2, G = M^T M of the two triangles
-// (1 for a square in the metric, 0.5 for a 45-degree parallelogram). Weight
-//     w = round(1000 (q - min_quality))   (edges with q <= min_quality are left out)
+// (1 for a square in the metric, 0.5 for a 45-degree parallelogram, 0 when not convex in the
+// metric). Weight
+//     w = round(1000 (q + pair_bonus))   (with min_quality > 0, edges with q <= it are left out)
 // and the matching maximises the total weight without having to be perfect: a chain of k
 // sheared pairs loses to two unmatched triangles as soon as k (q_square - q_sheared) exceeds
-// q_square - min_quality, so defects stay local. Unmatched triangles remain triangles (the split
+// q_square + pair_bonus, so defects stay local, while on irregular point sets (graded frames)
+// the bonus keeps the unmatched triangles few (each becomes three quads and an irregular vertex). Unmatched triangles remain triangles (the split
 // to all-quad turns each into three quads). Integer weights: the result is exact and
 // deterministic (LEMON's ListGraph, nodes and edges added in cell / edge order).
 #include <Eigen/Core>
@@ -28,7 +30,8 @@
 namespace quadapt {
 
 struct MetricMatchingOptions {
-  double min_quality = 0.35;  ///< pairs of metric quality <= this are never matched
+  double min_quality = 0;     ///< > 0: pairs of metric quality <= this are never matched
+  double pair_bonus = 0.5;    ///< added to every pair's weight: rewards pairing over leaving triangles
 };
 
 struct MetricMatchingStats {

@@ -1,5 +1,5 @@
 #pragma once
-// The refine baselines (thesis §2.5, DESIGN.md §1): uniform refinement (every quad into 4) and
+// The refine baselines (thesis §2.5, docs/design.md §1): uniform refinement (every quad into 4) and
 // fixed-fraction refinement (the share F of cells with the largest indicator split into 4, then
 // extra splits so that face neighbours differ by at most one level, thesis Fig. 2.2), hanging
 // nodes kept. Input: an all-quad mesh, conforming or 2:1 non-conforming (e.g. a previous

@@ -1,13 +1,13 @@
 #pragma once
 // size-solve: the global size field (thesis §5.3 feature-based, §5.4 goal-oriented) and the
-// frame M = V^-1 that lpcvt / bamgquad consume (eq. 3.13, DESIGN.md §3-4).
+// frame M = V^-1 that lpcvt / bamgquad consume (eq. 3.13, docs/design.md §3-4).
 //
 // Continuous mesh model (eqs. 5.1-5.4): density d = 1/(4 h^2) (elements per unit area; the
 // target element spans ±v, ±w, i.e. 2h1 x 2h2), continuous complexity
 //     N_hp = ∫ d (p+1)^2 dx = Σ_k area_k d_k (p+1)^2        (d piecewise constant per cell).
 //
 // Feature-based (Problem 2, eq. 5.17): minimise ∫ B d^(-q n/2) subject to N_hp = C, n = p+1.
-// Stationarity (corrected eq. 5.21, DESIGN.md §4):
+// Stationarity (corrected eq. 5.21, docs/design.md §4):
 //     d = ( q B / (2 λ n) )^( 2/(q n + 2) ),  i.e. d ∝ B^(2/(qn+2)),
 // so at the optimum B d^(-(qn+2)/2) = 2λn/q is the same in every cell. λ is found by bisection
 // (in log space) on the monotone map λ -> N_hp, to a relative 1e-10 — also when safeguards

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Comparison report of one study against the thesis's table (DESIGN.md section 5).
+"""Comparison report of one study against the thesis's table (docs/design.md §5).
 
 usage: compare.py --study DIR --thesis thesis-tables.json --case KEY --mode feature|goal
                   [--ps 1,2,3] [--methods uniform,fixed-fraction,bamg,lpcvt] [-o DIR/report.md]

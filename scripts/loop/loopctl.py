@@ -10,6 +10,8 @@
                                             mismatch, naming the differing keys)
   loopctl.py table OUT [--last K]           assemble OUT/convergence.csv from the step reports
   loopctl.py stop OUT K MAXDOFS METHOD GROWTH   print 'stop' or 'go' (DOF limit rule, docs/loop.md)
+  loopctl.py plot-title OUT                 the convergence plot's title: case (mode), p, method
+  loopctl.py thesis-key OUT                 the thesis-tables.json case of the run ('' if none)
 """
 import csv
 import io
@@ -33,7 +35,7 @@ TOOL_COLUMNS = ["dgsolve", "estimate_frame", "adjoint", "size_solve", "lpcvt", "
                 "quadsmooth", "refine"]
 COLUMNS = (["step", "cells", "dofs", "l2_error", "functional", "functional_error",
             "functional_error_estimate", "effectivity", "target_complexity", "continuous_complexity",
-            "t_solve"] + ["t_" + t for t in TOOL_COLUMNS] + ["t_step"])
+            "t_solve"] + ["t_" + t for t in TOOL_COLUMNS] + ["t_step", "warnings"])
 
 
 def load(path):
@@ -124,7 +126,7 @@ def cmd_check_case(args):
     if not isinstance(d, dict):
         sys.exit("%s: a case file must be a JSON object" % path)
     if "exact" not in d:
-        sys.exit("%s: a case file needs an 'exact' solution expression (DESIGN.md section 3)" % path)
+        sys.exit("%s: a case file needs an 'exact' solution expression (docs/design.md §3)" % path)
 
 
 def cmd_params(args):
@@ -176,6 +178,12 @@ def row_for(step_dir, k):
     if isinstance(est, (int, float)) and isinstance(err, (int, float)) and err != 0:
         row["effectivity"] = est / err
     row["t_step"] = total
+    # the step's tool warnings (run-loop.sh record_warnings): "tool: message | tool: message"
+    try:
+        with open(os.path.join(step_dir, "warnings.txt")) as f:
+            row["warnings"] = " | ".join(line.strip() for line in f if line.strip()) or None
+    except OSError:
+        pass
     return row
 
 
@@ -219,12 +227,38 @@ def cmd_stop(args):
     print("stop" if dofs >= maxdofs or dofs * g > 1.25 * maxdofs else "go")
 
 
+# The thesis's studies (docs/data/thesis-tables.json cases) by shipped case name and mode.
+THESIS_KEYS = {
+    ("sshock", "feature"): "sshock-feature",
+    ("boundary-layer", "feature"): "boundary-layer-feature",
+    ("sshock-advection", "goal"): "sshock-goal",
+    ("boundary-layer-advection", "goal"): "boundary-layer-goal",
+    ("boundary-layer-goal-thesis", "goal"): "boundary-layer-goal",
+}
+
+
+def run_case_name(params):
+    case = load(params.get("case", "")) or {}
+    name = case.get("name") if isinstance(case, dict) else None
+    return name or os.path.splitext(os.path.basename(params.get("case", "") or "case"))[0]
+
+
+def cmd_plot_title(args):
+    p = load(os.path.join(args[0], "loop.json")) or {}
+    print("%s (%s), p = %s, %s" % (run_case_name(p), p.get("mode", "?"), p.get("p", "?"), p.get("method", "?")))
+
+
+def cmd_thesis_key(args):
+    p = load(os.path.join(args[0], "loop.json")) or {}
+    print(THESIS_KEYS.get((run_case_name(p), p.get("mode")), ""))
+
+
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     cmd, args = sys.argv[1], sys.argv[2:]
     {"get": cmd_get, "summary": cmd_summary, "show": cmd_show, "check-case": cmd_check_case, "params": cmd_params, "table": cmd_table,
-     "stop": cmd_stop}.get(cmd, lambda a: sys.exit("loopctl: unknown command " + cmd))(args)
+     "stop": cmd_stop, "plot-title": cmd_plot_title, "thesis-key": cmd_thesis_key}.get(cmd, lambda a: sys.exit("loopctl: unknown command " + cmd))(args)
 
 
 if __name__ == "__main__":

@@ -2,7 +2,9 @@
 # Pictures of a loop's run directory (called at the end of run-loop.sh; also
 # `make -f Makefile.cases pictures OUT=dir [WINDOW=x0,x1,y0,y1] [ALL_STEPS=yes]`).
 #   pictures.sh OUT [--window x0,x1,y0,y1] [--all-steps] [--title NAME] [--thesis-case KEY]
-# (KEY: a case of thesis-tables.json, e.g. sshock-feature: its final points go on the plot)
+# (KEY: a case of docs/data/thesis-tables.json, e.g. sshock-feature: its final points go on the
+#  plot; default: the study of the run's case and mode, loopctl.py thesis-key. NAME: the plot's
+#  title; default "case (mode), p = P, method", loopctl.py plot-title)
 # Writes, when the inputs exist and the picture is older than them:
 #   OUT/final-mesh.png, OUT/final-solution.png, OUT/final-mesh-closeup.png (with --window),
 #   OUT/final-frame.png (the frame that made the final mesh, 1/h crosses as thesis Fig. 6.5),
@@ -14,7 +16,7 @@ set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
 OUT="${1:?usage: pictures.sh OUT [--window W] [--all-steps] [--title NAME]}"; shift
-WINDOW="" ALL=0 THESIS_KEY="" NAME="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
+WINDOW="" ALL=0 THESIS_KEY="" NAME=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --window) WINDOW="$2"; shift 2 ;;
@@ -27,6 +29,8 @@ done
 PY="${PYTHON:-}"
 [ -n "$PY" ] || { [ -x /usr/bin/python3 ] && PY=/usr/bin/python3 || PY=python3; }
 [ -f "$OUT/loop.json" ] || { echo "pictures: $OUT is not a loop's run directory (no loop.json)" >&2; exit 2; }
+# titles: case (mode), p, method
+[ -n "$NAME" ] || NAME="$("$PY" "$here/loopctl.py" plot-title "$OUT")"
 last="$(cat "$OUT/loop.done" 2>/dev/null || true)"
 if [ -z "$last" ]; then  # unfinished run: the last solved step
   last=0
@@ -72,10 +76,12 @@ if "$PY" -c "import matplotlib" 2>/dev/null; then
   mode="$("$PY" "$here/loopctl.py" get "$OUT/loop.json" mode)"
   method="$("$PY" "$here/loopctl.py" get "$OUT/loop.json" method)"
   thesis=()
-  tt="${THESIS_TABLES:-$root/../shared/reference/thesis-tables.json}"
+  tt="${THESIS_TABLES:-$root/docs/data/thesis-tables.json}"
+  # the thesis's point: the study this case and mode belong to
+  [ -n "$THESIS_KEY" ] || THESIS_KEY="$("$PY" "$here/loopctl.py" thesis-key "$OUT")"
   [ -n "$THESIS_KEY" ] && [ -f "$tt" ] && thesis=(--thesis "$tt" --thesis-case "$THESIS_KEY")
   if [ ! -s "$OUT/convergence.png" ] || [ "$OUT/convergence.csv" -nt "$OUT/convergence.png" ]; then
-    "$PY" "$root/scripts/plot/convergence.py" --p "$p" --mode "$mode" --title "$NAME, p = $p" ${thesis[@]+"${thesis[@]}"} \
+    "$PY" "$root/scripts/plot/convergence.py" --p "$p" --mode "$mode" --title "$NAME" ${thesis[@]+"${thesis[@]}"} \
       -o "$OUT/convergence.png" "$method=$OUT/convergence.csv" 2>"$OUT/plot.log" \
       || echo "pictures: warning: convergence plot failed (see $OUT/plot.log)" >&2
   fi

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# One adaptive loop (DESIGN.md section 1; docs/loop.md). Called by `make -f Makefile.cases loop`.
+# One adaptive loop (docs/design.md §1; docs/loop.md). Called by `make -f Makefile.cases loop`.
 #
 #   run-loop.sh --case CASE.json --mesh START.msh --p P --method lpcvt|bamg|fixed-fraction|uniform
 #               --mode feature|goal --steps N --growth G --out DIR
@@ -71,6 +71,7 @@ fi
 msg="$(ctl check-case "$CASE" 2>&1)" || die "$msg"
 [ -n "$MESH" ] || die "MESH is not set (the start mesh, e.g. MESH=examples/meshes/square16.msh)"
 [ -f "$MESH" ] || die "MESH '$MESH': no such file"
+is_uint "$P" || die "P='$P': the DG degree must be an integer"
 is_uint "$STEPS" || die "STEPS='$STEPS': must be a non-negative integer (number of adaptations)"
 is_num "$GROWTH" && "$PY" -c "import sys; sys.exit(0 if float('$GROWTH') > 1 else 1)" \
   || die "GROWTH='$GROWTH': must be a number > 1 (complexity growth per step)"
@@ -100,10 +101,15 @@ if [ ${#missing[@]} -gt 0 ]; then
   die "tool(s) not found: ${missing[*]} (needed by METHOD=$METHOD MODE=$MODE). Build them
   (cmake --build build --target ${missing[*]}) or point BIN= at the directory that holds them"
 fi
-# the DG degree range is the library's, as dgsolve states it ("Polynomial degree P (1..8)")
-range="$(dgsolve --help | sed -n 's/.*Polynomial degree P (\([0-9]*\)\.\.\([0-9]*\)).*/\1 \2/p' | head -n 1)"
-read -r pmin pmax <<< "${range:-1 8}"
-is_uint "$P" && [ "$P" -ge "$pmin" ] && [ "$P" -le "$pmax" ] || die "P='$P': the DG degree must be an integer $pmin..$pmax"
+# the DG degree range is the library's, as dgsolve --help states it ("degree P (1..8)"); goal mode
+# solves the adjoint at p + 1, so its largest p is one less (lib/dg/degree.hpp)
+range="$(dgsolve --help 2>/dev/null | grep -o 'degree P ([0-9]*\.\.[0-9]*)' | grep -o '[0-9]*\.\.[0-9]*' || true)"
+[ -n "$range" ] || die "cannot read the degree range from 'dgsolve --help' ($(command -v dgsolve))"
+pmin=${range%..*}; pmax=${range#*..}
+if [ "$MODE" = goal ] && [ "$METHOD" != uniform ]; then pmax=$((pmax - 1)); fi
+if [ "$P" -lt "$pmin" ] || [ "$P" -gt "$pmax" ]; then
+  die "P=$P: the DG degree must be $pmin..$pmax$([ "$MODE" = goal ] && [ "$METHOD" != uniform ] && echo " in goal mode (the adjoint solves at p+1)")"
+fi
 if [ "$PICTURES" = yes ] && ! command -v meshplot >/dev/null 2>&1; then
   echo "loop: note: meshplot not found; the run will have no mesh pictures" >&2
 fi
@@ -142,6 +148,21 @@ say() { echo "[$name] $*"; }
 # run_tool STEPDIR LOGNAME OUTPUT INPUTS... -- COMMAND...
 # Skips when OUTPUT and its report exist and no input is newer; else runs COMMAND with its
 # stderr in STEPDIR/LOGNAME.log and prints one line.
+record_warnings() {  # record_warnings STEPDIR TOOL RC
+  local dir="$1" tool="$2" rc="$3" log="$1/$2.log" w=() line
+  while IFS= read -r line; do w+=("$line"); done < <(
+    { grep -i -E '(^|: )warning:' "$log" | sed -E 's/^([^ :]+: )?warning: //I'
+      [ "$rc" -eq 1 ] && tail -n 1 "$log" | sed -E 's/^[^ :]+: //'
+    } 2>/dev/null | awk '!seen[$0]++' | head -n 3)
+  local f="$dir/warnings.txt" tmp="$dir/warnings.txt.tmp-$$"
+  { [ -f "$f" ] && awk -v p="$tool: " 'index($0, p) != 1' "$f" || true; } > "$tmp"
+  for line in "${w[@]+"${w[@]}"}"; do
+    echo "$tool: $line" >> "$tmp"
+    echo "loop: warning: $(basename "$dir"): $tool: $line" >&2
+  done
+  if [ -s "$tmp" ]; then mv -f "$tmp" "$f"; else rm -f "$tmp" "$f"; fi
+}
+
 run_tool() {
   local dir="$1" logname="$2" out="$3"; shift 3
   local inputs=()
@@ -160,9 +181,11 @@ run_tool() {
   t0=$(date +%s%N)
   "$@" 2>"$dir/$logname.log" || rc=$?
   t1=$(date +%s%N)
-  if [ $rc -eq 1 ] && [ -s "$out" ]; then
-    # exit 1 = the tool saved a valid output but reports a failure (e.g. not converged): go on
-    echo "loop: warning: step $(basename "$dir"): $logname: $(tail -n 1 "$dir/$logname.log")" >&2
+  if [ $rc -eq 0 ] || { [ $rc -eq 1 ] && [ -s "$out" ]; }; then
+    # Warnings (a tool's "warning:" lines, and exit 1 = a valid output saved but a failure
+    # reported, e.g. not converged) go on: shown here and kept in step-K/warnings.txt, which the
+    # convergence table's `warnings` column reads.
+    record_warnings "$dir" "$logname" $rc
   elif [ $rc -ne 0 ]; then
     echo "loop: error: step $(basename "$dir"): $logname failed (exit $rc):" >&2
     tail -n 5 "$dir/$logname.log" | sed 's/^/    /' >&2
@@ -234,9 +257,9 @@ while :; do
       fi
       if [ "$METHOD" = lpcvt ]; then
         run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED"
-        # --pairing: no node of lpcvt's triangles moves (Gmsh's node relocation and physical-space
-        # smoothing widen the boundary-layer rows; docs/lpcvt.md "Boundary layers")
-        run_tool "$d" recombine "$d/quad.msh" "$d/tri.msh" -- recombine "$d/tri.msh" -o "$d/quad.msh" --pairing
+        # the tools' defaults: recombine matches in the metric of the frame lpcvt attached to
+        # tri.msh (no node moves; docs/recombine.md)
+        run_tool "$d" recombine "$d/quad.msh" "$d/tri.msh" -- recombine "$d/tri.msh" -o "$d/quad.msh"
         run_tool "$d" quadsmooth "$d/adapted.msh" "$d/quad.msh" "$d/frame.msh" -- \
           quadsmooth "$d/quad.msh" -o "$d/adapted.msh" --frame "$d/frame.msh"
       else
@@ -260,6 +283,6 @@ echo "$last" > "$OUT/loop.done.tmp-$$" && mv -f "$OUT/loop.done.tmp-$$" "$OUT/lo
 
 # ------------------------------------------------------------------ pictures (optional)
 if [ "$PICTURES" = yes ]; then
-  "$here/pictures.sh" "$OUT" --title "$name" ${WINDOW:+--window "$WINDOW"} ${THESIS_KEY:+--thesis-case "$THESIS_KEY"}
+  "$here/pictures.sh" "$OUT" ${WINDOW:+--window "$WINDOW"} ${THESIS_KEY:+--thesis-case "$THESIS_KEY"}
 fi
 say "done: $rows solves; table $OUT/convergence.csv"

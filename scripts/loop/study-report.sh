@@ -9,7 +9,7 @@ root="$(cd "$here/../.." && pwd)"
 dir="$1" mode="$2" key="$3" ps="$4" methods="$5" title="${6:-$(basename "$1")}"
 PY="${PYTHON:-}"
 [ -n "$PY" ] || { [ -x /usr/bin/python3 ] && PY=/usr/bin/python3 || PY=python3; }
-thesis="${THESIS_TABLES:-$root/../shared/reference/thesis-tables.json}"
+thesis="${THESIS_TABLES:-$root/docs/data/thesis-tables.json}"
 [ -f "$thesis" ] || { echo "study-report: error: thesis tables not found: $thesis (set THESIS_TABLES=)" >&2; exit 2; }
 mkdir -p "$dir"
 if "$PY" -c "import matplotlib" 2>/dev/null; then

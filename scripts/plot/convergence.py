@@ -8,8 +8,9 @@ usage: convergence.py --p P [--mode feature|goal] [--measure auto|l2_error|funct
 One line per run (LABEL = method name: uniform, fixed-fraction, bamg, lpcvt get fixed colours),
 log-log axes, and the dashed grey guide line of the optimal rate: error ~ h^(p+1) for the L2
 error (feature mode), h^(2p+1) for the functional error (goal mode), with h ~ DOFs^(-1/2).
-With --thesis, the thesis's final-mesh rows for this p are drawn as hollow stars in the
-method's colour. Runs whose table is missing or empty are listed in the legend as "(no data)".
+With --thesis, the thesis's final-mesh rows for this p and the plotted methods are drawn as
+hollow stars in the method's colour. Axes: labelled ticks at 1, 2, 5 x 10^k when the axis spans
+less than two decades (a single labelled decade tick otherwise), plain decades beyond. Runs whose table is missing or empty are listed in the legend as "(no data)".
 Needs python3-matplotlib (Debian); run with /usr/bin/python3.
 """
 import argparse
@@ -23,6 +24,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
 
 STYLE = {
     "uniform": dict(color="#555555", marker="s"),
@@ -49,7 +51,29 @@ def read_curve(path, measure):
     return pts
 
 
-def main():
+def tick_label(v, _pos=None):
+    """1, 2, 5 x 10^k as '2e4'-style text; decades as '1e4' (or plain below 1e4)."""
+    if v <= 0:
+        return ""
+    k = math.floor(math.log10(v) + 1e-9)
+    m = v / 10 ** k
+    if 1e-3 <= v < 1e4:
+        return "%g" % v
+    return "%de%d" % (round(m), k) if abs(m - round(m)) < 1e-6 else ""
+
+
+def readable_log_ticks(axis, lo, hi):
+    """Labelled ticks a reader can use: 1-2-5 per decade when the range spans < 2 decades."""
+    if not (lo > 0 and hi > lo):
+        return
+    subs = (1.0, 2.0, 5.0) if math.log10(hi / lo) < 2 else (1.0,)
+    axis.set_major_locator(LogLocator(base=10, subs=subs))
+    axis.set_major_formatter(FuncFormatter(tick_label))
+    axis.set_minor_formatter(NullFormatter())
+
+
+def make_figure(argv):
+    """Parses the command line and draws the figure; returns (fig, ax, output path)."""
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--p", type=int, required=True)
     ap.add_argument("--mode", choices=["feature", "goal"], default="feature")
@@ -59,16 +83,18 @@ def main():
     ap.add_argument("--thesis-case", default="")
     ap.add_argument("-o", "--output", required=True)
     ap.add_argument("runs", nargs="+", metavar="LABEL=CSV")
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
     measure = a.measure if a.measure != "auto" else ("functional_error" if a.mode == "goal" else "l2_error")
     rate = (2 * a.p + 1) if measure == "functional_error" else (a.p + 1)
 
     fig, ax = plt.subplots(figsize=(6.4, 4.8), dpi=110)
     all_pts = []
+    labels = set()
     for spec in a.runs:
         if "=" not in spec:
             sys.exit("convergence.py: run '%s' is not LABEL=CSV" % spec)
         label, path = spec.split("=", 1)
+        labels.add(label)
         pts = read_curve(path, measure)
         st = STYLE.get(label, dict(marker="o"))
         if not pts:
@@ -81,9 +107,9 @@ def main():
         with open(a.thesis) as f:
             rows = json.load(f)["cases"][a.thesis_case]["rows"]
         for r in rows:
-            if r["p"] != a.p:
-                continue
             m = THESIS_METHOD.get(r["method"], r["method"])
+            if r["p"] != a.p or m not in labels:
+                continue
             ax.loglog([r["dofs"]], [r["error"]], linestyle="none", marker="*", markersize=11,
                       markerfacecolor="none", markeredgewidth=1.2, color=STYLE.get(m, {}).get("color", "k"),
                       label="thesis %s (final)" % m)
@@ -99,6 +125,9 @@ def main():
         ys = [e_anchor * (x / nmax) ** (-rate / 2.0) for x in xs]
         ax.loglog(xs, ys, "--", color="#999999", linewidth=1.0,
                   label=r"$\mathcal{O}(h^{%d})$" % rate)
+    if all_pts:
+        readable_log_ticks(ax.xaxis, *ax.get_xlim())
+        readable_log_ticks(ax.yaxis, *ax.get_ylim())
     ax.set_xlabel("degrees of freedom")
     ax.set_ylabel(r"$|\mathcal{J}(u) - \mathcal{J}_H(u_H)|$" if measure == "functional_error"
                   else r"$\|u - u_H\|_{L_2}$")
@@ -106,9 +135,14 @@ def main():
     ax.grid(True, which="both", linewidth=0.3, alpha=0.5)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    tmp = "%s.tmp-%d%s" % (os.path.splitext(a.output)[0], os.getpid(), os.path.splitext(a.output)[1])
+    return fig, ax, a.output
+
+
+def main():
+    fig, _, output = make_figure(sys.argv[1:])
+    tmp = "%s.tmp-%d%s" % (os.path.splitext(output)[0], os.getpid(), os.path.splitext(output)[1])
     fig.savefig(tmp)
-    os.replace(tmp, a.output)
+    os.replace(tmp, output)
 
 
 if __name__ == "__main__":

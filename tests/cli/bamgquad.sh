@@ -4,7 +4,7 @@
 # works as it is; quadsmooth keeps it valid; bad frames -> exit 2, nothing written.
 set -euo pipefail
 SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
-SHARED=${QUADAPT_SHARED_DIR:-$SRC/../shared}
+FIX=${QUADAPT_FIXTURES_DIR:-$SRC/tests/fixtures/philip}
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
 command -v bamgquad >/dev/null || { echo "SKIPPED: bamgquad not built"; exit 0; }
@@ -81,7 +81,7 @@ PY
 fi
 
 # --- a real PHiLiP frame (no boundary groups in the file: named from the unit square's sides)
-F="$SHARED/reference/philip-fixtures/input_ss15_fb_p2_3.msh"
+F="$FIX/input_ss15_fb_p2_3.msh"
 if [ -f "$F" ]; then
   bamgquad -q "$F" -o "$T/ph.msh"  # no flag: the file states no convention, read as PHiLiP's
   python3 - "$T/ph.json" <<'PY'

@@ -8,7 +8,7 @@ JSON (reports): compared recursively. Objects must have the same keys, arrays th
 strings / booleans / null must be equal, numbers a and b must satisfy
     |a - b| <= atol + rtol * |b|          (b from GOLDEN; defaults rtol = 1e-9, atol = 1e-12).
 Keys that are provenance, not results, are ignored at any depth by default:
-    timings peak_memory_mb command version threads inputs outputs options
+    timings peak_memory_mb command version threads inputs outputs options provenance
 --ignore KEY (repeatable) adds a key (a plain name, matched at any depth, or a dotted path such as
 frame.file); --keep KEY compares a default-ignored key after all.
 
@@ -27,7 +27,8 @@ import math
 import os
 import sys
 
-DEFAULT_IGNORED = ["timings", "peak_memory_mb", "command", "version", "threads", "inputs", "outputs", "options"]
+DEFAULT_IGNORED = ["timings", "peak_memory_mb", "command", "version", "threads", "inputs", "outputs", "options",
+                   "provenance"]
 
 
 class Comparer:
@@ -94,7 +95,7 @@ def read_msh(path):
         i += 1
         return toks
 
-    nper = {1: 2, 2: 3, 3: 4, 15: 1, 4: 4, 5: 8, 8: 3, 9: 6, 10: 9}
+    nper = {1: 2, 2: 3, 3: 4, 15: 1, 4: 4, 5: 8, 8: 3, 9: 6, 10: 9, 26: 4, 27: 5, 36: 16, 37: 25}
     while i < len(lines):
         line = lines[i].strip()
         i += 1

@@ -20,7 +20,7 @@ for fmt in "msh22" "msh41 -bin" "msh22 -bin"; do
 done
 
 # PHiLiP's frame file (no $Entities, no boundary lines): the boundary appears, named.
-meshconvert -q "$QUADAPT_SHARED_DIR/reference/philip-fixtures/input_ss15_fb_p1_3.msh" -o "$T/p.msh" --require quads
+meshconvert -q "$QUADAPT_FIXTURES_DIR/input_ss15_fb_p1_3.msh" -o "$T/p.msh" --require quads
 grep -q '^1 1 "bottom"$' "$T/p.msh"
 grep -q '^1 4 "left"$' "$T/p.msh"
 grep -q '"Vinv"' "$T/p.msh"

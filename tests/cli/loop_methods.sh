@@ -46,7 +46,7 @@ if mode == "goal":
 for c in need:
     assert r0[c] != "", "%s empty in step 0" % c
 if method in ("lpcvt", "bamg"):
-    # complexity honesty (DESIGN.md section 4): the new mesh's DOFs near size-solve's target
+    # complexity honesty (docs/design.md §4): the new mesh's DOFs near size-solve's target
     tc, dofs = float(r0["target_complexity"]), float(rows[1]["dofs"])
     assert 0.6 < dofs / tc < 1.6, "DOFs %g vs target %g" % (dofs, tc)
 PYEOF

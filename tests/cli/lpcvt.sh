@@ -103,7 +103,7 @@ set -e
 [ $rc -eq 2 ]
 
 # 6. a real PHiLiP frame, read as it is (short run)
-D=$QUADAPT_SHARED_DIR/reference/philip-fixtures
+D=$QUADAPT_FIXTURES_DIR
 if [ -f "$D/input_ss15_fb_p1_3.msh" ]; then
   lpcvt "$D/input_ss15_fb_p1_3.msh" -o "$T/ss.msh" --max-cycles 1 --max-iterations 30 -q
   $PY - "$T/ss.json" <<'PY'

@@ -5,7 +5,7 @@
 # count (cells (p+1)^2) is within 10% of the target. Two fixtures (S-shock p = 1, boundary
 # layer p = 2) to keep it fast; docs/bench-lpcvt.md has all eight.
 set -euo pipefail
-D=$QUADAPT_SHARED_DIR/reference/philip-fixtures
+D=$QUADAPT_FIXTURES_DIR
 [ -f "$D/input_ss15_fb_p1_3.msh" ] || { echo "lpcvt_fixtures: no fixtures, skipped"; exit 0; }
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT

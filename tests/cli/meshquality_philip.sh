@@ -4,7 +4,7 @@
 # compared with a stored golden report (rtol 1e-9).
 set -euo pipefail
 S=$QUADAPT_SOURCE_DIR
-D=$QUADAPT_SHARED_DIR/reference/philip-fixtures
+D=$QUADAPT_FIXTURES_DIR
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 mkdir "$T/plain" "$T/frame"

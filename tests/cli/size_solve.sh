@@ -3,7 +3,7 @@
 # within 0.1%, the Vinv layout against PHiLiP's fixture, the goal-oriented fit, bad input.
 set -euo pipefail
 SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
-SHARED=${QUADAPT_SHARED_DIR:-$SRC/../shared}
+FIX=${QUADAPT_FIXTURES_DIR:-$SRC/tests/fixtures/philip}
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
 command -v size-solve >/dev/null || { echo "SKIPPED: size-solve not built"; exit 0; }
@@ -43,7 +43,7 @@ PY
 
 # --- Vinv layout: same view shape as PHiLiP's frame files (9 components, zeros outside the 2x2),
 # and det M integrates to the complexity: sum area_k det(M_k) / 4 = C / (p+1)^2
-python3 - "$T/frame.msh" "$SHARED/reference/philip-fixtures/input_ss15_fb_p2_3.msh" <<'PY'
+python3 - "$T/frame.msh" "$FIX/input_ss15_fb_p2_3.msh" <<'PY'
 import sys
 def views(path):
     L = open(path).read().split("\n"); out = {}

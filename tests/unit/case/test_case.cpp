@@ -96,3 +96,51 @@ TEST_CASE("exact solution: S = div(D grad u) - c . grad u, exact for a polynomia
     CHECK(ex.source(x, y) == doctest::Approx(S).epsilon(1e-14));
   }
 }
+
+TEST_CASE("case: boundary data given as expressions (map forms of dirichlet and neumann)") {
+  Case cs = parse_case(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "x*y",
+                           "dirichlet": {"inner": "0", "outer": "sin(x) + y^2"},
+                           "neumann": {"right": 2.5}})J",
+                       "c.json");
+  CHECK_FALSE(cs.dirichlet_all);
+  CHECK(cs.is_dirichlet("inner"));
+  CHECK(cs.is_dirichlet("outer"));
+  CHECK_FALSE(cs.is_dirichlet("right"));
+  REQUIRE(cs.dirichlet_value("outer") != nullptr);
+  CHECK(evaluate(cs.dirichlet_value("outer")->expr, 0.3, 2.0) == doctest::Approx(std::sin(0.3) + 4.0).epsilon(1e-15));
+  CHECK(evaluate(cs.dirichlet_value("inner")->expr, 0.3, 2.0) == 0.0);
+  CHECK(cs.dirichlet_value("right") == nullptr);
+  REQUIRE(cs.neumann_value("right") != nullptr);
+  CHECK(evaluate(cs.neumann_value("right")->expr, 0, 0) == 2.5);
+  CHECK(cs.neumann_value("outer") == nullptr);
+
+  // The list form keeps meaning "the exact solution's trace": no data expressions.
+  Case list = parse_case(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "x*y", "dirichlet": ["left"]})J", "c.json");
+  CHECK(list.dirichlet_value("left") == nullptr);
+  CHECK(list.is_dirichlet("left"));
+
+  // Errors name the file, the key and the boundary.
+  CHECK(has(case_error(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "x", "dirichlet": {"outer": "2*z"}})J"),
+            "c.json: key 'dirichlet.outer': column 3"));
+  CHECK(has(case_error(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "x", "dirichlet": {"outer": [1]}})J"),
+            "key 'dirichlet.outer': expected an expression string"));
+  CHECK(has(case_error(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "x", "neumann": ["right"]})J"),
+            "key 'neumann' must be a map"));
+  CHECK(has(case_error(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "x", "neumann": {"right": "1"}})J"),
+            "boundary 'right' has Neumann data but is a Dirichlet boundary"));
+  CHECK(has(case_error(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "x", "dirichlet": ["left"],
+                           "neumann": {"left": "1"}})J"),
+            "boundary 'left' has Neumann data but is a Dirichlet boundary"));
+
+  // Every named boundary must exist in the mesh.
+  Mesh m = make_structured_quads(2, 2);
+  Case bad = parse_case(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "x", "dirichlet": ["left"],
+                           "neumann": {"rigth": "1"}})J",
+                        "c.json");
+  try {
+    check_case_boundaries(bad, m);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(has(e.what(), "c.json: Neumann boundary 'rigth' is not a boundary group of the mesh"));
+  }
+}

@@ -6,7 +6,9 @@
 
 #include "core/error.hpp"
 #include "helpers.hpp"
+#include "frame/frame.hpp"
 #include "lpcvt/boundary_points.hpp"
+#include "lpcvt/lpcvt.hpp"
 
 using namespace lpcvt_test;
 
@@ -128,4 +130,19 @@ TEST_CASE("boundary points equidistribute the metric length (eqs. 4.2-4.7)") {
   Background bc = Background::from_frame(m, 1.0, "mem");
   BoundaryPoints bp = mesh_boundary(bc, boundary_curves(bc));
   for (auto s : bp.segments) CHECK((bp.points[s[0]] - bp.points[s[1]]).norm() == doctest::Approx(0.05).epsilon(1e-9));
+}
+
+TEST_CASE("attach_frame: the output's Vinv is the frame meshed, tagged as the quadapt convention") {
+  quadapt::Frame f;
+  f.mesh = quadapt::make_structured_quads(2, 2, 0, 1, 0, 1);
+  f.M.assign(4, quadapt::frame_inverse(0.05, 4.0, 0.5));
+  const Background bg = Background::from_frame(f, frame_metric_scale());
+  Mesh m = quadapt::make_structured_quads(5, 3, 0, 1, 0, 1);
+  attach_frame(m, bg);
+  CHECK(m.frame_convention == "quadapt");
+  // read back as any tool reads it: without the tag it would be PHiLiP's (M doubled, 4x the cells)
+  const quadapt::Frame back = quadapt::frame_from_mesh(m, "mem");
+  CHECK(back.source == quadapt::SizeConvention::Quadapt);
+  for (int c = 0; c < back.num_cells(); ++c) CHECK((back.M[c] - f.M[0]).norm() <= 1e-14 * f.M[0].norm());
+  CHECK(back.target_cells() == doctest::Approx(f.target_cells()).epsilon(1e-12));
 }

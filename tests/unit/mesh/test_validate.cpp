@@ -111,7 +111,7 @@ TEST_CASE("PHiLiP's frame files validate as quad meshes with Vinv") {
   o.require = CellKind::Quads;
   o.required_groups = {"bottom", "right", "top", "left"};
   o.required_fields = {"Vinv"};
-  const std::string dir = std::string(QUADAPT_SHARED_DIR) + "/reference/philip-fixtures/";
+  const std::string dir = std::string(QUADAPT_FIXTURES_DIR) + "/";
   for (const char* f : {"input_ss15_fb_p1_3.msh", "input_bl15_adj_p2_3.msh"}) {
     CAPTURE(f);
     CHECK(problem(read_msh(dir + f), o) == "");

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "core/error.hpp"
@@ -185,4 +186,39 @@ TEST_CASE("render: frame glyphs, one per cell centre in the window") {
   o.window = Window{0, 0.45, 0, 0.45};
   render_mesh_svg(m, o, &s);
   CHECK(s.glyphs == 4);  // centres 0.1, 0.3 in each direction
+}
+
+TEST_CASE("render: cross glyphs are sized by their cell, readable where sizes span decades") {
+  // Half the cells ask for h = 1e-3, the others for h = 0.1 (isotropic, axis-aligned): with
+  // glyphs sized by M the coarse cells' crosses were 100x shorter than the fine ones, below a pixel.
+  Mesh m = make_structured_quads(8, 8);
+  CellField f = frame_field(64, 0.0, 0.1, 0.1);
+  const CellField fine = frame_field(64, 0.0, 1e-3, 1e-3);
+  for (int c = 0; c < 32; ++c)
+    for (int k = 0; k < 9; ++k) f(c, k) = fine(c, k);
+  m.set_field(f);
+  MeshPlotOptions o;
+  o.field = "Vinv";
+  o.width = 800;
+  const std::string svg = render_mesh_svg(m, o);
+  // the red path: "M x y L x y" per glyph
+  const size_t at = svg.find("stroke=\"#d62728\"");
+  REQUIRE(at != std::string::npos);
+  const size_t d0 = svg.rfind("d=\"", at) + 3, d1 = svg.find('"', d0);
+  std::string d = svg.substr(d0, d1 - d0);
+  for (char& ch : d)
+    if (ch == 'M' || ch == 'L') ch = ' ';
+  std::istringstream in(d);
+  double x0, y0, x1, y1, lo = 1e300, hi = 0;
+  int n = 0;
+  while (in >> x0 >> y0 >> x1 >> y1) {
+    const double len = std::hypot(x1 - x0, y1 - y0);
+    lo = std::min(lo, len);
+    hi = std::max(hi, len);
+    ++n;
+  }
+  CHECK(n == 64);
+  const double cell_px = 800.0 / 8;  // 100 px
+  CHECK(lo >= 0.8 * cell_px);        // full arm = 0.9 sqrt(|K|) = 90 px in every cell
+  CHECK(hi <= 1.0 * cell_px);        // and inside its cell
 }

@@ -175,7 +175,7 @@ TEST_CASE("axial median handles the wrap at 0/180") {
 
 TEST_CASE("every PHiLiP fixture: measured as it is, and against its own frame") {
   namespace fs = std::filesystem;
-  const std::string dir = std::string(QUADAPT_SHARED_DIR) + "/reference/philip-fixtures/";
+  const std::string dir = std::string(QUADAPT_FIXTURES_DIR) + "/";
   int n = 0;
   for (const auto& e : fs::directory_iterator(dir)) {
     if (e.path().extension() != ".msh") continue;

@@ -151,7 +151,7 @@ TEST_CASE("frame M = V^-1 (eq. 3.13) and the Vinv layout") {
 TEST_CASE("frame layout agrees with PHiLiP's Vinv (fixture input_ss15_fb_p2_3.msh)") {
   // PHiLiP writes M = diag(1/h1, 1/h2) R(-θ) row-major (its second row may carry a reflection,
   // harmless for a frame ⟨v, w, -v, -w⟩). Decode each row set into (h, ρ, θ) and rebuild it.
-  std::ifstream in(std::string(QUADAPT_SHARED_DIR) + "/reference/philip-fixtures/input_ss15_fb_p2_3.msh");
+  std::ifstream in(std::string(QUADAPT_FIXTURES_DIR) + "/input_ss15_fb_p2_3.msh");
   REQUIRE(in.good());
   std::string line;
   while (std::getline(in, line) && line != "$ElementData") {}

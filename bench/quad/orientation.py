@@ -1,0 +1,86 @@
+#!/usr/bin/python3
+"""Quad quality of the L_p-CVT path at every frame orientation (issue #14, docs/quad-quality.md).
+
+Constant frames on the unit square (16 x 16 background), half-axes h1 = h sqrt(s), h2 = h / sqrt(s)
+with h = sqrt(0.05 * 0.005) (1000 final cells), long axis at angle a; the default chain
+    lpcvt FRAME -o TRI --seed 3;  recombine TRI -o QUAD;  quadsmooth QUAD --frame FRAME -o MESH
+and, with --bamg, bamgquad FRAME -o MESH. Figures from meshquality --frame (each quad mapped by M
+at its centroid): mean |corner angle - 90| in the metric, minimum metric scaled Jacobian, share of
+edges with metric length in [1/sqrt2, sqrt2], share of interior vertices of valence != 4, cells
+against the frame's 1000. 'corner bound': sin of the smallest corner angle of the domain in the
+metric, the largest minimum scaled Jacobian any all-quad mesh of the square can have.
+
+  orientation.py BIN OUT [--angles 0 15 ...] [--stretches 1 5 ...] [--bamg] [--jobs 2]
+"""
+import argparse, json, math, os, subprocess, sys
+from concurrent.futures import ThreadPoolExecutor
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+FRAME_PY = os.path.join(HERE, "..", "..", "tests", "cli", "lpcvt_frame.py")
+
+
+def corner_bound(h1, h2, a):
+    c, s = math.cos(a), math.sin(a)
+    M = [[c / h1, s / h1], [-s / h2, c / h2]]
+    ex = (M[0][0], M[1][0]); ey = (M[0][1], M[1][1])
+    cosang = abs(ex[0] * ey[0] + ex[1] * ey[1]) / math.hypot(*ex) / math.hypot(*ey)
+    ang = math.acos(min(1.0, cosang))
+    return math.sin(min(ang, math.pi - ang))
+
+
+def run(cmd):
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+
+
+def one(binp, out, a_deg, s, bamg):
+    h = math.sqrt(0.05 * 0.005)
+    h1, h2 = h * math.sqrt(s), h / math.sqrt(s)
+    a = math.radians(a_deg)
+    tag = f"a{a_deg:g}-s{s:g}"
+    f = os.path.join(out, f"frame-{tag}.msh")
+    run(["/usr/bin/python3", FRAME_PY, f, "--n", "16", "--h1", repr(h1), "--h2", repr(h2), "--theta", repr(a)])
+    rows = []
+    paths = ["lpcvt"] + (["bamgquad"] if bamg else [])
+    for path in paths:
+        m = os.path.join(out, f"{path}-{tag}.msh")
+        if path == "lpcvt":
+            t, q = os.path.join(out, f"tri-{tag}.msh"), os.path.join(out, f"quad-{tag}.msh")
+            run([f"{binp}/lpcvt", f, "-o", t, "--seed", "3", "-q", "--threads", "1"])
+            run([f"{binp}/recombine", t, "-o", q, "-q", "--threads", "1"])
+            run([f"{binp}/quadsmooth", q, "--frame", f, "-o", m, "-q", "--threads", "1"])
+        else:
+            run([f"{binp}/bamgquad", f, "-o", m, "-q", "--threads", "1"])
+        d = json.loads(subprocess.run([f"{binp}/meshquality", m, "--frame", f], check=True,
+                                      capture_output=True, text=True).stdout)
+        me = d["metric"]
+        rows.append(dict(angle=f"{a_deg:g}", stretch=s, path=path, cells=d["cells"],
+                         target=d["frame"]["continuous_complexity"],
+                         dev=me["quad_angle_deviation_mean_deg"], min_sj=me["scaled_jacobian_min"],
+                         in_band=me["edge_length"]["share_in_range"], irregular=d["irregular_interior_share"],
+                         bound=corner_bound(h1, h2, a)))
+    return rows
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("bin"); ap.add_argument("out")
+    ap.add_argument("--angles", type=float, nargs="+", default=[0, 15, 30, 45, 60, 75])
+    ap.add_argument("--stretches", type=float, nargs="+", default=[1, 5, 10, 20])
+    ap.add_argument("--bamg", action="store_true")
+    ap.add_argument("--jobs", type=int, default=2)
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    jobs = [(ang, s) for s in a.stretches for ang in a.angles]
+    with ThreadPoolExecutor(a.jobs) as ex:
+        res = list(ex.map(lambda j: one(a.bin, a.out, j[0], j[1], a.bamg), jobs))
+    rows = [r for rr in res for r in rr]
+    json.dump(rows, open(os.path.join(a.out, "orientation.json"), "w"), indent=1)
+    print("| angle | stretch | path | mean metric angle dev. (deg) | min metric SJ | corner bound | edges in band | irregular | cells / target |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| {r['angle']} | {r['stretch']:g} | {r['path']} | {r['dev']:.1f} | {r['min_sj']:.2f} | {r['bound']:.2f} | "
+              f"{100 * r['in_band']:.1f} % | {100 * r['irregular']:.1f} % | {r['cells']} / {r['target']:.0f} ({100 * (r['cells'] / r['target'] - 1):+.1f} %) |")
+
+
+if __name__ == "__main__":
+    main()

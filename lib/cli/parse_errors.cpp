@@ -1,0 +1,66 @@
+#include "cli/parse_errors.hpp"
+
+#include <cctype>
+#include <cstdlib>
+#include <regex>
+
+#include "core/format.hpp"
+
+namespace quadapt {
+
+namespace {
+bool is_number(const std::string& s) {
+  if (s.empty()) return false;
+  char* end = nullptr;
+  std::strtod(s.c_str(), &end);
+  return end && *end == '\0';
+}
+
+CLI::Validator bound_validator(bool strict, const char* name) {
+  return CLI::Validator(
+      [strict](std::string& in) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(in.c_str(), &end);
+        if (in.empty() || !end || *end != '\0') return "value '" + in + "' is not a number";
+        if (strict ? !(v > 0) : !(v >= 0)) return std::string("must be ") + (strict ? "> 0" : ">= 0") + " (got " + in + ")";
+        return "";
+      },
+      name);
+}
+}  // namespace
+
+const CLI::Validator PositiveValue = bound_validator(true, "POSITIVE");
+const CLI::Validator NonNegativeValue = bound_validator(false, "NONNEGATIVE");
+
+std::string first_unknown_option(const CLI::App& app, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a == "--") break;  // everything after is positional
+    // "-", negative numbers and values such as "-6,4" (meshplot --range) are not options
+    if (a.size() < 2 || a[0] != '-' || is_number(a) || std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.')
+      continue;
+    std::string name = a.substr(0, a.find('='));
+    if (name.size() > 2 && name[1] != '-') name = name.substr(0, 2);  // -p2 -> -p
+    if (app.get_option_no_throw(name) == nullptr) return a.substr(0, a.find('='));
+  }
+  return "";
+}
+
+std::string parse_error_message(const CLI::App& app, int argc, char** argv, const CLI::ParseError& e) {
+  const std::string unknown = first_unknown_option(app, argc, argv);
+  if (!unknown.empty()) return "unknown option " + unknown;
+  std::string msg = e.what();
+  static const std::regex long_number(R"(-?[0-9]+\.?[0-9]*(?:[eE][-+]?[0-9]+)?)");
+  std::string out;
+  auto it = std::sregex_iterator(msg.begin(), msg.end(), long_number);
+  size_t last = 0;
+  for (; it != std::sregex_iterator(); ++it) {
+    const auto& m = *it;
+    out += msg.substr(last, m.position() - last);
+    out += m.length() > 12 ? sci(std::strtod(m.str().c_str(), nullptr)) : m.str();
+    last = m.position() + m.length();
+  }
+  return out + msg.substr(last);
+}
+
+}  // namespace quadapt

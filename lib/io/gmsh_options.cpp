@@ -1,0 +1,59 @@
+#include "io/gmsh_options.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+#include "core/atomic_file.hpp"
+
+namespace quadapt {
+
+namespace {
+const char* const kHeader = "// Gmsh options written by quadapt (lib/io/gmsh_options.hpp): smooth high-order display.\n";
+}
+
+std::string gmsh_view_options(const Mesh& m) {
+  std::ostringstream o;
+  const int nf = static_cast<int>(m.cell_fields.size());
+  bool any = false;
+  for (size_t k = 0; k < m.cell_node_fields.size(); ++k) {
+    const CellNodeField& f = m.cell_node_fields[k];
+    if (f.degree < 1) continue;
+    if (!any) o << kHeader;
+    any = true;
+    const int i = nf + static_cast<int>(k);
+    int level = 1;
+    while ((1 << level) < 2 * f.degree) ++level;
+    const double cells = std::max(1, m.num_cells());
+    while (level > 1 && cells * std::pow(4.0, level) > 4e6) --level;
+    o << "View[" << i << "].AdaptVisualizationGrid = 1;\n"
+      << "View[" << i << "].MaxRecursionLevel = " << level << ";\n"
+      << "View[" << i << "].TargetError = -1;\n";
+  }
+  return any ? o.str() : "";
+}
+
+void write_gmsh_options(const Mesh& mesh, const std::string& msh_path) {
+  namespace fs = std::filesystem;
+  if (msh_path.empty() || msh_path == "-" || msh_path.rfind("/dev/", 0) == 0) return;
+  std::error_code ec;
+  const fs::file_status st = fs::status(msh_path, ec);
+  if (!ec && fs::exists(st) && !fs::is_regular_file(st)) return;
+  const std::string opt = msh_path + ".opt";
+  const std::string text = gmsh_view_options(mesh);
+  if (text.empty()) {
+    std::ifstream in(opt);
+    std::string first;
+    if (in && std::getline(in, first) && first + "\n" == kHeader) {
+      in.close();
+      fs::remove(opt, ec);
+    }
+    return;
+  }
+  atomic_write(opt, [&](std::ostream& out) { out << text; });
+}
+
+}  // namespace quadapt

@@ -1,0 +1,27 @@
+#pragma once
+// FILE.msh.opt: the Gmsh options file written beside a mesh that carries a DG field, so that
+// Gmsh shows the high-order solution smoothly on open. Gmsh merges "FILE.opt" automatically when
+// it opens FILE (General.* / View[i].* statements in its .geo syntax).
+//
+// For every DG CellNodeField (degree p >= 1; view index i = its position among the views as
+// write_msh orders them: the CellFields first, then the CellNodeFields):
+//   View[i].AdaptVisualizationGrid = 1;   evaluate the interpolation scheme on a refined grid
+//   View[i].MaxRecursionLevel = L;        each cell drawn as 4^L sub-quads, 2^L >= 2p, capped
+//                                         so that cells * 4^L <= 4e6 (L >= 1)
+//   View[i].TargetError = -1;             refine uniformly to level L (no early stop)
+// Other views keep Gmsh's defaults (all visible; pick one in Gmsh's view list).
+#include <string>
+
+#include "mesh/mesh.hpp"
+
+namespace quadapt {
+
+/// The options text for `mesh` written as a .msh file; empty when it has no DG field.
+std::string gmsh_view_options(const Mesh& mesh);
+
+/// Writes `msh_path`.opt atomically when gmsh_view_options is not empty. When it is empty, a
+/// stale `msh_path`.opt that quadapt wrote earlier is removed (one of another origin is kept).
+/// Nothing is done for outputs that are not files in a directory ("-", /dev/..., FIFOs).
+void write_gmsh_options(const Mesh& mesh, const std::string& msh_path);
+
+}  // namespace quadapt

@@ -1,0 +1,187 @@
+#include "mesh/curved.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "core/error.hpp"
+
+namespace quadapt {
+
+void equispaced_lagrange(int q, double x, double* l, double* dl) {
+  for (int i = 0; i <= q; ++i) {
+    const double xi = -1 + 2.0 * i / q;
+    double v = 1, d = 0;
+    for (int m = 0; m <= q; ++m) {
+      if (m == i) continue;
+      const double xm = -1 + 2.0 * m / q;
+      const double g = 1.0 / (xi - xm);
+      const double f = (x - xm) * g;
+      d = d * f + v * g;
+      v *= f;
+    }
+    l[i] = v;
+    dl[i] = d;
+  }
+}
+
+int gmsh_quad_type(int q) { return q == 1 ? 3 : q == 2 ? 10 : q == 3 ? 36 : q == 4 ? 37 : -1; }
+int gmsh_line_type(int q) { return q == 1 ? 1 : q == 2 ? 8 : q == 3 ? 26 : q == 4 ? 27 : -1; }
+
+std::vector<int> edge_control_points(int q, int e) {
+  const int n1 = q + 1;
+  std::vector<int> idx(n1);
+  for (int k = 0; k <= q; ++k) {
+    int i, j;
+    switch (e) {
+      case 0: i = k; j = 0; break;
+      case 1: i = q; j = k; break;
+      case 2: i = q - k; j = q; break;
+      default: i = 0; j = q - k; break;
+    }
+    idx[k] = i + n1 * j;
+  }
+  return idx;
+}
+
+std::vector<int> gmsh_quad_node_order(int q) {
+  if (q < 1 || q > kMaxGeometricOrder)
+    throw Error("gmsh_quad_node_order: order " + std::to_string(q) + " not supported");
+  const int n1 = q + 1;
+  std::vector<int> perm;
+  // Gmsh orders a quad's nodes recursively: corners, edge interiors (in edge direction), then
+  // the interior block [lo, hi]^2 as a quad of order hi - lo.
+  for (int lo = 0, hi = q; lo <= hi; ++lo, --hi) {
+    if (lo == hi) {
+      perm.push_back(lo + n1 * lo);
+      break;
+    }
+    const int ci[4] = {lo, hi, hi, lo}, cj[4] = {lo, lo, hi, hi};
+    for (int k = 0; k < 4; ++k) perm.push_back(ci[k] + n1 * cj[k]);
+    for (int e = 0; e < 4; ++e) {
+      const int di = ci[(e + 1) % 4] > ci[e] ? 1 : ci[(e + 1) % 4] < ci[e] ? -1 : 0;
+      const int dj = cj[(e + 1) % 4] > cj[e] ? 1 : cj[(e + 1) % 4] < cj[e] ? -1 : 0;
+      for (int k = 1; k < hi - lo; ++k) perm.push_back(ci[e] + k * di + n1 * (cj[e] + k * dj));
+    }
+  }
+  return perm;
+}
+
+CellMap::CellMap(const Mesh& m, int c) : q_(m.geometric_order()), X_(nullptr) {
+  if (q_ > 1) {
+    X_ = m.cell_points(c);
+  } else {
+    for (int k = 0; k < 4; ++k) corner_[k] = m.nodes[m.cells[c].v[k]];
+  }
+}
+
+Vec2 CellMap::map(double xi, double eta) const {
+  if (q_ == 1) {
+    const double n0 = 0.25 * (1 - xi) * (1 - eta), n1 = 0.25 * (1 + xi) * (1 - eta);
+    const double n2 = 0.25 * (1 + xi) * (1 + eta), n3 = 0.25 * (1 - xi) * (1 + eta);
+    return corner_[0] * n0 + corner_[1] * n1 + corner_[2] * n2 + corner_[3] * n3;
+  }
+  double lx[kMaxGeometricOrder + 1], dlx[kMaxGeometricOrder + 1], ly[kMaxGeometricOrder + 1], dly[kMaxGeometricOrder + 1];
+  equispaced_lagrange(q_, xi, lx, dlx);
+  equispaced_lagrange(q_, eta, ly, dly);
+  Vec2 x = Vec2::Zero();
+  const int n1 = q_ + 1;
+  for (int j = 0; j < n1; ++j)
+    for (int i = 0; i < n1; ++i) x += X_[i + n1 * j] * (lx[i] * ly[j]);
+  return x;
+}
+
+double CellMap::jacobian(double xi, double eta, Vec2& t1, Vec2& t2) const {
+  if (q_ == 1) {
+    const Vec2 &p0 = corner_[0], &p1 = corner_[1], &p2 = corner_[2], &p3 = corner_[3];
+    t1 = 0.25 * ((p1 - p0) * (1 - eta) + (p2 - p3) * (1 + eta));
+    t2 = 0.25 * ((p3 - p0) * (1 - xi) + (p2 - p1) * (1 + xi));
+  } else {
+    double lx[kMaxGeometricOrder + 1], dlx[kMaxGeometricOrder + 1], ly[kMaxGeometricOrder + 1], dly[kMaxGeometricOrder + 1];
+    equispaced_lagrange(q_, xi, lx, dlx);
+    equispaced_lagrange(q_, eta, ly, dly);
+    t1.setZero();
+    t2.setZero();
+    const int n1 = q_ + 1;
+    for (int j = 0; j < n1; ++j)
+      for (int i = 0; i < n1; ++i) {
+        const Vec2& X = X_[i + n1 * j];
+        t1 += X * (dlx[i] * ly[j]);
+        t2 += X * (lx[i] * dly[j]);
+      }
+  }
+  return t1.x() * t2.y() - t1.y() * t2.x();
+}
+
+void edge_reference_point(int e, double s, double& xi, double& eta) {
+  switch (e) {
+    case 0: xi = -1 + 2 * s; eta = -1; break;
+    case 1: xi = 1; eta = -1 + 2 * s; break;
+    case 2: xi = 1 - 2 * s; eta = 1; break;
+    default: xi = -1; eta = 1 - 2 * s; break;
+  }
+}
+
+double edge_geometry(const CellMap& G, int e, double s, Vec2& x, Vec2& n) {
+  double xi, eta;
+  edge_reference_point(e, s, xi, eta);
+  Vec2 t1, t2;
+  G.jacobian(xi, eta, t1, t2);
+  static const double dxi[4] = {2, 0, -2, 0}, deta[4] = {0, 2, 0, -2};
+  const Vec2 T = t1 * dxi[e] + t2 * deta[e];
+  const double len = T.norm();
+  x = G.map(xi, eta);
+  n = Vec2(T.y(), -T.x()) / len;
+  return len;
+}
+
+void elevate_geometric_order(Mesh& m, int q) {
+  if (q < 1 || q > kMaxGeometricOrder)
+    throw Error("elevate_geometric_order: order " + std::to_string(q) + " not supported (1.." + std::to_string(kMaxGeometricOrder) + ")");
+  if (m.is_curved()) throw Error("elevate_geometric_order: the mesh is already curved");
+  if (!m.all_quads()) throw Error("elevate_geometric_order: curved cells must be quads");
+  if (q == 1) return;
+  const int n1 = q + 1;
+  std::vector<Vec2> pts;
+  pts.reserve(static_cast<size_t>(m.num_cells()) * n1 * n1);
+  for (int c = 0; c < m.num_cells(); ++c) {
+    CellMap G(m, c);
+    for (int j = 0; j <= q; ++j)
+      for (int i = 0; i <= q; ++i) {
+        // Corners copied exactly (the map reproduces them only to rounding).
+        const bool ci = i == 0 || i == q, cj = j == 0 || j == q;
+        if (ci && cj) {
+          const int k = j == 0 ? (i == 0 ? 0 : 1) : (i == 0 ? 3 : 2);
+          pts.push_back(m.nodes[m.cells[c].v[k]]);
+        } else {
+          pts.push_back(G.map(-1 + 2.0 * i / q, -1 + 2.0 * j / q));
+        }
+      }
+  }
+  m.curved.order = q;
+  m.curved.points = std::move(pts);
+}
+
+ScaledJacobian min_scaled_jacobian(const Mesh& m) {
+  ScaledJacobian r;
+  const int q = m.geometric_order(), n = 2 * q + 2;
+  for (int c = 0; c < m.num_cells(); ++c) {
+    if (!m.cells[c].is_quad()) continue;
+    CellMap G(m, c);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    Vec2 t1, t2;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double d = G.jacobian(-1 + 2.0 * i / (n - 1), -1 + 2.0 * j / (n - 1), t1, t2);
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+      }
+    const double s = hi > 0 ? lo / hi : -1;
+    if (r.cell < 0 || s < r.min) {
+      r.min = s;
+      r.cell = c;
+    }
+  }
+  return r;
+}
+
+}  // namespace quadapt

@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# Messages a person can act on (issue: first hour in the shell):
+#  - every tool's --help ends with an example;
+#  - an unknown option is named (dgsolve --bogus used to say "MESH is required");
+#  - range errors print no 310-digit bound; logged values print in %.3e (adjoint printed
+#    "estimate 0.000000, true error 0.000000" for 7.5e-8 / 6.1e-8);
+#  - one degree range, the library's (lib/dg/degree.hpp: 1..8; adjoint 1..7), in dgsolve, adjoint
+#    and the loop's check (which said "inputs OK" for P=9);
+#  - loop warnings reach the loop's console and convergence.csv's `warnings` column.
+set -euo pipefail
+S=$QUADAPT_SOURCE_DIR
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+MK="$S/tests/golden/refine/make_square.py"
+
+# --- --help ends with an example
+for t in adjoint bamgquad dgsolve estimate-frame lpcvt meshconvert meshplot meshquality quadsmooth recombine refine size-solve; do
+  h=$($t --help)
+  tail_lines=$(printf '%s\n' "$h" | sed '/^$/d' | tail -n 3)
+  echo "$tail_lines" | head -1 | grep -q '^Example:$' || fail "$t --help does not end with an example: $tail_lines"
+  echo "$tail_lines" | sed -n 2p | grep -q "^  $t " || fail "$t example does not run $t"
+done
+
+# --- unknown options are named, with or without the required arguments
+for args in "--bogus" "$S/examples/meshes/square16.msh -c $S/examples/cases/smooth.json -p 1 -o $T/x.msh --bogus=3"; do
+  rc=0; msg=$(dgsolve $args 2>&1) || rc=$?
+  [ $rc -eq 2 ] || fail "dgsolve $args: exit $rc"
+  echo "$msg" | grep -q 'unknown option --bogus' || fail "unknown option not named: $msg"
+done
+[ ! -e "$T/x.msh" ] || fail "output written despite an unknown option"
+rc=0; msg=$(lpcvt -q --bogus 2>&1) || rc=$?
+echo "$msg" | grep -q 'unknown option --bogus' || fail "lpcvt: $msg"
+
+# --- no absurd bounds in range errors
+M=$S/examples/meshes/square16.msh
+for cmd in "dgsolve --threads -1 $M" "recombine $M -o $T/y.msh --topology-passes -5" "bamgquad $M -o $T/y.msh --edge-factor -1"; do
+  msg=$($cmd 2>&1 || true)
+  echo "$msg" | grep -q -E '[0-9]{13,}' && fail "$cmd: long number in: $msg"
+  [ ${#msg} -lt 200 ] || fail "$cmd: message of ${#msg} characters: $msg"
+  echo "$msg" | grep -q -E 'must be >=? 0 \(got -[0-9]+\)' || fail "$cmd: $msg"
+done
+msg=$(dgsolve --threads -1 x 2>&1 || true)
+echo "$msg" | grep -q 'must be >= 0 (got -1)' || fail "threads: $msg"
+
+# --- values in %.3e: a polynomial case, errors at rounding level (used to print 0.000000)
+python3 "$MK" 2 "$T/sq2.msh"
+cat > "$T/poly.json" <<'JSON'
+{"diffusion": [[0.1, 0], [0, 0.1]], "advection": [1, 0.5], "exact": "x*y + 0.5", "functional": {"boundary": "right"}}
+JSON
+dgsolve "$T/sq2.msh" -c "$T/poly.json" -p 2 -o "$T/sol.msh" 2> "$T/dg.log"
+grep -q -E 'L2 error -?[0-9]\.[0-9]{3}e[-+][0-9]{2}$' "$T/dg.log" || fail "dgsolve log: $(cat "$T/dg.log")"
+adjoint "$T/sol.msh" -c "$T/poly.json" -o "$T/dwr.msh" 2> "$T/adj.log"
+grep -q -E 'estimate -?[0-9]\.[0-9]{3}e[-+][0-9]{2}, true error [0-9]\.[0-9]{3}e[-+][0-9]{2}$' "$T/adj.log" ||
+  fail "adjoint log: $(cat "$T/adj.log")"
+grep -q '0\.000000' "$T/dg.log" "$T/adj.log" && fail "fixed-point zeros in the logs"
+
+# --- one degree range
+dgsolve --help | grep -q 'degree P (1\.\.8)' || fail "dgsolve --help range"
+rc=0; msg=$(dgsolve "$T/sq2.msh" -c "$T/poly.json" -p 9 -o "$T/p9.msh" 2>&1) || rc=$?
+[ $rc -eq 2 ] && echo "$msg" | grep -q 'out of range (1\.\.8)' || fail "p=9: exit $rc: $msg"
+dgsolve -q "$T/sq2.msh" -c "$T/poly.json" -p 8 -o "$T/p8.msh"
+rc=0; msg=$(adjoint "$T/p8.msh" -c "$T/poly.json" -o "$T/d8.msh" 2>&1) || rc=$?
+[ $rc -eq 2 ] && echo "$msg" | grep -q 'out of range (1\.\.7)' || fail "adjoint p=8: exit $rc: $msg"
+mk() { make -s -f "$S/Makefile.cases" check CASE=sshock BIN="$QUADAPT_BIN_DIR" "$@" 2>&1; }
+msg=$(mk P=9) && fail "make check P=9 passed: $msg"
+echo "$msg" | grep -q 'P=9: the DG degree must be 1..8' || fail "check P=9: $msg"
+mk P=8 | grep -q 'inputs OK' || fail "check P=8"
+msg=$(mk P=8 MODE=goal) && fail "goal P=8 passed"
+echo "$msg" | grep -q 'must be 1..7 in goal mode' || fail "goal P=8: $msg"
+
+# --- loop warnings: a wrapped lpcvt that warns (exit 0) and one that exits 1 with a valid output
+mkdir "$T/bin"
+for t in dgsolve estimate-frame size-solve recombine quadsmooth meshplot; do ln -s "$QUADAPT_BIN_DIR/$t" "$T/bin/$t"; done
+cat > "$T/bin/lpcvt" <<SH
+#!/usr/bin/env bash
+"$QUADAPT_BIN_DIR/lpcvt" "\$@" || exit \$?
+echo "lpcvt: warning: test warning one" >&2
+if [ -e "$T/fail1" ]; then echo "lpcvt: test failure with a valid output" >&2; exit 1; fi
+SH
+chmod +x "$T/bin/lpcvt"
+python3 "$MK" 8 "$T/sq8.msh"
+touch "$T/fail1"
+make -s -f "$S/Makefile.cases" loop CASE=sshock MESH="$T/sq8.msh" P=1 METHOD=lpcvt STEPS=1 OUT="$T/run" \
+     PICTURES=no BIN="$T/bin" > "$T/loop.out" 2>&1 || fail "loop failed: $(tail -5 "$T/loop.out")"
+grep -q 'loop: warning: step-0: lpcvt: test warning one' "$T/loop.out" || fail "console: $(cat "$T/loop.out")"
+grep -q 'loop: warning: step-0: lpcvt: test failure with a valid output' "$T/loop.out" || fail "console exit 1"
+python3 - "$T/run/convergence.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 2, rows
+w = rows[0]["warnings"].split(" | ")
+# the real lpcvt may warn too (e.g. not converged); ours come last, in order, each once
+assert w[-2:] == ["lpcvt: test warning one", "lpcvt: test failure with a valid output"], w
+assert all(x.startswith("lpcvt: ") for x in w) and len(w) == len(set(w)), w
+assert rows[1]["warnings"] == "", rows[1]
+print("messages: convergence.csv warnings:", rows[0]["warnings"])
+PY
+echo "messages: ok"

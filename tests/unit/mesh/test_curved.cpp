@@ -1,0 +1,185 @@
+// The curved (high-order) cell map: area, normals and Jacobian positivity (issue #18, "Done
+// when" 3). The reference values are computed independently of mesh/curved.cpp: the area of a
+// polynomial map by the boundary integral 1/2 of the closed curve integral of (x dy - y dx)
+// with a Lagrange interpolant written out here, the disk by pi R^2.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "case/case.hpp"
+#include "core/error.hpp"
+#include "curved_disk.hpp"
+#include "dg/discretization.hpp"
+#include "mesh/curved.hpp"
+#include "mesh/validate.hpp"
+
+using namespace quadapt;
+using curvedtest::curved_disk;
+
+namespace {
+
+// 5-point Gauss-Legendre on [0, 1] (exact for degree 9 >= 2q - 1 with q <= 4).
+const double gx[5] = {0.04691007703066800, 0.23076534494715845, 0.5, 0.76923465505284155, 0.95308992296933200};
+const double gw[5] = {0.11846344252809454, 0.23931433524968324, 0.28444444444444444, 0.23931433524968324,
+                      0.11846344252809454};
+
+// Independent 1D Lagrange interpolation through P[0..q] at s_k = k/q: value and derivative.
+void curve(const std::vector<Vec2>& P, double s, Vec2& x, Vec2& dx) {
+  const int q = static_cast<int>(P.size()) - 1;
+  x.setZero();
+  dx.setZero();
+  for (int k = 0; k <= q; ++k) {
+    double l = 1, dl = 0;
+    for (int m = 0; m <= q; ++m) {
+      if (m == k) continue;
+      const double den = double(k - m) / q;
+      dl = dl * (s - double(m) / q) / den + l / den;
+      l *= (s - double(m) / q) / den;
+    }
+    x += l * P[k];
+    dx += dl * P[k];
+  }
+}
+
+// The control points of boundary edge v[1] -> v[2] (local edge 1) of cell c.
+std::vector<Vec2> edge1_points(const Mesh& m, int c) {
+  const int q = m.geometric_order();
+  std::vector<Vec2> P;
+  for (int b = 0; b <= q; ++b) P.push_back(m.cell_points(c)[q + (q + 1) * b]);
+  return P;
+}
+
+// Area enclosed by the boundary: 1/2 closed integral of (x dy - y dx) along the boundary edges.
+double boundary_area(const Mesh& m) {
+  double A = 0;
+  for (int c = 0; c < m.num_cells(); ++c) {
+    bool on = false;
+    for (const BoundaryEdge& be : m.boundary) on = on || (be.v[0] == m.cells[c].v[1] && be.v[1] == m.cells[c].v[2]);
+    if (!on) continue;
+    const std::vector<Vec2> P = edge1_points(m, c);
+    for (int k = 0; k < 5; ++k) {
+      Vec2 x, dx;
+      curve(P, gx[k], x, dx);
+      A += 0.5 * gw[k] * (x.x() * dx.y() - x.y() * dx.x());
+    }
+  }
+  return A;
+}
+
+double rate(double e0, double e1) { return std::log2(e0 / e1); }
+
+}  // namespace
+
+TEST_CASE("curved map: disk area at q = 3 equals the polynomial map's own area to 1e-12; converges to pi") {
+  // What "area to 1e-12" means: a q = 3 polynomial map does not reproduce a circle, so the
+  // reference is the exact area of the polynomial region, computed from its boundary curves.
+  for (int q : {2, 3}) {
+    for (int n : {1, 2}) {
+      const Mesh m = curved_disk(n, q);
+      const double Ab = boundary_area(m);
+      CHECK(std::abs(total_area(m) - Ab) < 1e-12);
+      // The DG geometry: ||0 - 1||_L2^2 = integral of 1 over the curved cells.
+      Case one = parse_case(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "1"})J", "one.json");
+      DGDiscretization dg(m, one, q);
+      const double e = dg.l2_error(Eigen::VectorXd::Zero(dg.num_dofs()));
+      CHECK(std::abs(e * e - Ab) < 1e-12);
+    }
+  }
+  // Convergence to the disk: |A_h - pi| = O(h^(q+1)) for odd q, O(h^(q+2)) for even q (the
+  // interpolation error's leading term integrates to zero along each edge for even q).
+  // Measured on n = 2, 4, 8: q = 1 rates 1.97, 1.99; q = 2: 3.98, 4.00; q = 3: 3.95, 3.99.
+  for (int q : {1, 2, 3}) {
+    double prev = 0;
+    for (int n : {2, 4, 8}) {
+      const double err = std::abs(total_area(curved_disk(n, q)) - M_PI);
+      if (n > 2) CHECK(rate(prev, err) > (q % 2 ? q + 1 : q + 2) - 0.1);
+      prev = err;
+    }
+  }
+}
+
+TEST_CASE("curved map: edge normals — closed-curve identities to rounding, radial to O(h^q)") {
+  for (int q : {2, 3}) {
+    double prev = 0;
+    for (int n : {1, 2, 4, 8}) {
+      const Mesh m = curved_disk(n, q);
+      Vec2 sum_n = Vec2::Zero();
+      double flux = 0, worst = 0;
+      for (int c = 0; c < m.num_cells(); ++c) {
+        const CellMap G(m, c);
+        for (int e = 0; e < 4; ++e) {
+          // Boundary edges only: local edge 1 of the ring cells at the circle.
+          const int a = m.cells[c].v[e], b = m.cells[c].v[(e + 1) % 4];
+          bool on = false;
+          for (const BoundaryEdge& be : m.boundary) on = on || (be.v[0] == a && be.v[1] == b);
+          if (!on) continue;
+          for (int k = 0; k < 5; ++k) {
+            Vec2 x, nrm;
+            const double ds = edge_geometry(G, e, gx[k], x, nrm);
+            CHECK(std::abs(nrm.norm() - 1) < 1e-14);
+            sum_n += gw[k] * ds * nrm;
+            flux += gw[k] * ds * x.dot(nrm);
+            worst = std::max(worst, std::acos(std::min(1.0, nrm.dot(x.normalized()))));
+          }
+        }
+      }
+      CHECK(sum_n.norm() < 1e-14);                            // closed curve: integral of n = 0
+      CHECK(std::abs(flux - 2 * boundary_area(m)) < 1e-12);  // divergence theorem: x . n = 2 |A|
+      // Measured rates (n = 1..8): q = 2: 2.78, 2.94, 2.98; q = 3: 2.83, 2.96, 2.99.
+      if (n > 1) CHECK(rate(prev, worst) > q - 0.25);
+      prev = worst;
+    }
+  }
+}
+
+TEST_CASE("curved map: Jacobian positivity — valid disks, a folded cell rejected") {
+  for (int q : {2, 3})
+    for (int n : {1, 4}) {
+      const Mesh m = curved_disk(n, q);
+      const ScaledJacobian sj = min_scaled_jacobian(m);
+      CHECK(sj.min > 0.2);  // measured 0.27 (q = 3) to 0.30
+      ValidateOptions v;
+      v.allow_curved = true;
+      CHECK_NOTHROW(validate_mesh(m, "disk.msh", v));
+    }
+  Mesh m = curved_disk(1, 3);
+  // Tools that have not been taught the curved map refuse it.
+  try {
+    validate_mesh(m, "disk.msh");
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("disk.msh: the mesh has curved cells (geometric order 3)") != std::string::npos);
+  }
+  // Pull the first edge-interior point of cell 0's outer edge deep into the cell: the map folds.
+  Vec2* X = m.curved.points.data();
+  X[3 + 4 * 1] = m.nodes[m.cells[0].v[0]] + Vec2(-0.2, 0.0);
+  CHECK(min_scaled_jacobian(m).min <= 0);
+  ValidateOptions v;
+  v.allow_curved = true;
+  try {
+    validate_mesh(m, "folded.msh", v);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("non-positive Jacobian") != std::string::npos);
+  }
+  Case one = parse_case(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "1"})J", "one.json");
+  CHECK_THROWS_AS(DGDiscretization(m, one, 3), InputError);
+}
+
+TEST_CASE("curved map: neighbours whose curved edges differ are refused by the DG") {
+  Mesh m = curved_disk(1, 2);
+  // Cell 4 is the centre square; move the midpoint of its edge 1 (shared with cell 0) in cell 4
+  // only: the two sides no longer trace the same curve.
+  m.curved.points[4 * 9 + 2 + 3 * 1] += Vec2(0.01, 0);
+  Case one = parse_case(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "1"})J", "one.json");
+  try {
+    DGDiscretization dg(m, one, 2);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("share the edge") != std::string::npos);
+  }
+  m.curved.points[4 * 9 + 2 + 3 * 1] -= Vec2(0.01, 0);
+  CHECK_NOTHROW(DGDiscretization(m, one, 2));
+}
