@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
     tool.input(in);
     // The report goes to PICTURE.json by default (e.g. sol.png.json), never over the mesh's own
     // report (sol.json from dgsolve) as the usual OUTPUT-with-.json rule would.
-    if (tool.report_path().empty()) tool.set_report_path(out + ".json");
+    if (tool.report_path().empty() && out != "-") tool.set_report_path(out + ".json");
     tool.output(out);
     plot::picture_format(out);  // unknown extension -> error before any work
     plot::MeshPlotOptions opt;
