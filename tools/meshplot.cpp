@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     Mesh m;
     {
       auto ph = tool.phase("read");
-      m = read_msh(in);
+      m = read_valid_msh(in);
     }
     plot::check_plot_field(m, field, in);
     const bool is_dg = !field.empty() && !m.cell_field(field) && m.cell_node_field(field);

@@ -165,8 +165,12 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
     }
   }
   report_["options"]["threads"] = threads;  // the effective count
+  clear_protected_paths();  // one run per process; tests run several
+  enable_input_guard();
+  struct GuardOff {
+    ~GuardOff() { enable_input_guard(false); }
+  } guard_off;
   try {
-    enable_input_guard();
     body();
     write_report();
     return 0;
