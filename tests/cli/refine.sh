@@ -4,7 +4,7 @@ set -euo pipefail
 SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
-command -v refine >/dev/null || { echo "SKIPPED: refine not built"; exit 0; }
+command -v refine >/dev/null || { echo "FAIL: refine not built (tools must be on PATH)" >&2; exit 1; }
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }

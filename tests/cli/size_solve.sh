@@ -6,7 +6,7 @@ SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 FIX=${QUADAPT_FIXTURES_DIR:-$SRC/tests/fixtures/philip}
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
-command -v size-solve >/dev/null || { echo "SKIPPED: size-solve not built"; exit 0; }
+command -v size-solve >/dev/null || { echo "FAIL: size-solve not built (tools must be on PATH)" >&2; exit 1; }
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
