@@ -48,7 +48,10 @@ for c in need:
 if method in ("lpcvt", "bamg"):
     # complexity honesty (docs/design.md §4): the new mesh's DOFs near size-solve's target
     tc, dofs = float(r0["target_complexity"]), float(rows[1]["dofs"])
-    assert 0.6 < dofs / tc < 1.6, "DOFs %g vs target %g" % (dofs, tc)
+    print("%s/%s: DOFs/target = %.3f" % (method, mode, dofs / tc))
+    # measured at 83a2a20: lpcvt 1.104 (feature and goal), bamg 0.958; was (0.6, 1.6), which a
+    # wrong (p+1)^2 factor (x 4/9 or 9/4 at p = 1 vs 2) could pass
+    assert 0.85 < dofs / tc < 1.2, "DOFs %g vs target %g" % (dofs, tc)
 PYEOF
   ran=$((ran + 1))
 }
