@@ -79,9 +79,9 @@ CLI::Validator range_check(const OptionRange& r) {
       "", std::string("range ") + r.option);
 }
 
-// CLI11's PositiveNumber / NonNegativeNumber print a 310-digit bound and let NaN through: the
-// same intervals, finite and readable.
-void replace_sign_checks(CLI::Option* opt) {
+// Deactivates the active validator of `opt` described as `description` (CLI11's own name for
+// it) and adds `replacement` instead. No-op when there is none.
+void replace_validator(CLI::Option* opt, const std::string& description, const CLI::Validator& replacement) {
   for (int k = 0;; ++k) {
     CLI::Validator* v = nullptr;
     try {
@@ -89,18 +89,27 @@ void replace_sign_checks(CLI::Option* opt) {
     } catch (const CLI::OptionNotFound&) {
       return;
     }
-    const std::string d = v->get_description();
-    if (!v->get_active() || (d != "POSITIVE" && d != "NONNEGATIVE")) continue;
+    if (!v->get_active() || v->get_description() != description) continue;
     v->active(false);
-    opt->check(range_check({"*", "", 0, kInf, d == "POSITIVE", false}));
+    opt->check(replacement);
     return;
   }
+}
+
+// CLI11's PositiveNumber / NonNegativeNumber print a 310-digit bound and let NaN through: the
+// same intervals, finite and readable. CLI::ExistingFile also accepts "-" (standard input).
+void replace_cli11_checks(CLI::Option* opt) {
+  replace_validator(opt, "POSITIVE", range_check({"*", "", 0, kInf, true, false}));
+  replace_validator(opt, "NONNEGATIVE", range_check({"*", "", 0, kInf, false, false}));
+  replace_validator(opt, "FILE",
+                    CLI::Validator([](std::string& s) { return s == "-" ? std::string() : CLI::ExistingFile(s); },
+                                   "FILE|-", "input file"));
 }
 
 void apply_option_ranges(const std::string& tool, CLI::App& app) {
   for (CLI::Option* opt : app.get_options()) {
     if (opt->get_type_size() == 0) continue;  // a flag
-    replace_sign_checks(opt);
+    replace_cli11_checks(opt);
     const std::string name = opt->get_lnames().empty() ? "" : "--" + opt->get_lnames().front();
     if (opt->get_type_name() == "FLOAT") {
       opt->check(CLI::Validator(

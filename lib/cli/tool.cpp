@@ -21,25 +21,6 @@ constexpr const char* kExitCodes =
     "Exit codes: 0 success; 1 failure but a valid output was saved; 2 bad input or failure, "
     "nothing written; 3 internal error.";
 
-// Options checked with CLI::ExistingFile also accept "-" (standard input): the tools' input
-// options need no change of their own.
-void accept_stdin_for_file_options(CLI::App& app) {
-  for (CLI::Option* opt : app.get_options()) {
-    for (int k = 0;; ++k) {
-      CLI::Validator* v = nullptr;
-      try {
-        v = opt->get_validator(k);
-      } catch (const CLI::OptionNotFound&) {
-        break;
-      }
-      if (v->get_description() != "FILE" || !v->get_active()) continue;
-      v->active(false);
-      opt->check(CLI::Validator(
-          [](std::string& s) { return s == "-" ? std::string() : CLI::ExistingFile(s); }, "FILE|-", "input file"));
-      break;
-    }
-  }
-}
 }  // namespace
 
 Tool::Tool(std::string name, std::string summary, std::string details)
@@ -137,7 +118,6 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   for (int i = 0; i < argc; ++i) cmd << (i ? " " : "") << argv[i];
   report_["command"] = cmd.str();
   apply_option_ranges(name_, app_);
-  accept_stdin_for_file_options(app_);
   try {
     app_.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help, --version

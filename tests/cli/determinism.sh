@@ -8,10 +8,7 @@ set -euo pipefail
 S=$QUADAPT_SOURCE_DIR
 . "$S/tests/cli/lib/assert.sh"
 command -v gmsh >/dev/null || { echo "SKIPPED: gmsh (the program) not installed"; exit 77; }
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-cd "$T"
-E="$S/examples"
+in_temp_dir
 export OMP_NUM_THREADS=2
 dgsolve -q "$E/meshes/square16.msh" -c "$E/cases/sshock.json" -p 2 -o sol.msh
 estimate-frame -q sol.msh -o shape.msh

@@ -6,10 +6,7 @@
 set -euo pipefail
 S=$QUADAPT_SOURCE_DIR
 . "$S/tests/cli/lib/assert.sh"
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-cd "$T"
-E="$S/examples"
+in_temp_dir
 cp "$E/meshes/square16.msh" m.msh
 dgsolve -q m.msh -c "$E/cases/smooth.json" -p 1 -o sol.msh
 for ex in 'log(x-2)' '1/(x-x)' 'sqrt(x-0.5)'; do

@@ -5,10 +5,7 @@
 set -euo pipefail
 S=$QUADAPT_SOURCE_DIR
 . "$S/tests/cli/lib/assert.sh"
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-cd "$T"
-E="$S/examples"
+in_temp_dir
 cp "$E/meshes/square16.msh" m.msh
 dgsolve -q m.msh -c "$E/cases/smooth.json" -p 1 -o sol.msh
 estimate-frame -q sol.msh -o shape.msh

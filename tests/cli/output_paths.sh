@@ -8,10 +8,7 @@
 set -euo pipefail
 S=$QUADAPT_SOURCE_DIR
 . "$S/tests/cli/lib/assert.sh"
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-cd "$T"
-E="$S/examples"
+in_temp_dir
 cp "$E/meshes/square16.msh" plain.msh
 cp "$E/cases/smooth.json" case.json
 dgsolve -q plain.msh -c case.json -p 1 -o sol.msh

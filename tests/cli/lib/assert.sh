@@ -1,4 +1,4 @@
-# Shared assertions for tests/cli/*.sh (sourced). Every check fails the script when false —
+# Shared assertions and set-up for tests/cli/*.sh (sourced; needs QUADAPT_SOURCE_DIR). Every check fails the script when false —
 # never `[ a ] && [ b ]`, which `set -e` does not stop on.
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
@@ -17,3 +17,11 @@ expect_exit() {
 
 # same_bytes A B: the two files are identical.
 same_bytes() { cmp -s "$1" "$2" || fail "$1 and $2 differ"; }
+
+# in_temp_dir: a fresh directory $T, removed at exit, becomes the current directory.
+in_temp_dir() {
+  T=$(mktemp -d)
+  trap 'rm -rf "$T"' EXIT
+  cd "$T"
+}
+E="$QUADAPT_SOURCE_DIR/examples"

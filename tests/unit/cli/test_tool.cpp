@@ -13,26 +13,20 @@
 #include "cli/tool.hpp"
 #include "core/atomic_file.hpp"
 #include "core/path_guard.hpp"
+#include "../temp_dir.hpp"
 
 using namespace quadapt;
 namespace fs = std::filesystem;
 
 namespace {
-struct TempDir {
-  fs::path dir;
-  TempDir() {
-    std::string t = (fs::temp_directory_path() / "quadapt-tool-XXXXXX").string();
-    REQUIRE(mkdtemp(t.data()));
-    dir = t;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
+// The guard is process-wide: leave it off and empty for the next test.
+struct GuardReset {
+  ~GuardReset() {
     clear_protected_paths();
     enable_input_guard(false);
   }
-  std::string operator/(const std::string& name) const { return (dir / name).string(); }
 };
+struct Dir : quadapt::test::TempDir, GuardReset {};
 
 // Runs a Tool "t" with `args` (argv[0] added) and an option --x (double) and -o.
 int run(std::vector<std::string> args, const std::function<void(Tool&, const std::string&)>& body,
@@ -52,7 +46,7 @@ int run(std::vector<std::string> args, const std::function<void(Tool&, const std
 }  // namespace
 
 TEST_CASE("exit codes: 0 ok, 1 PartialFailure (report kept), 2 bad input / parse, 3 internal") {
-  TempDir t;
+  Dir t;
   auto write = [](Tool& tool, const std::string& out) {
     tool.output(out);
     atomic_write(out, [](std::ostream& os) { os << "mesh"; });
@@ -76,7 +70,7 @@ TEST_CASE("exit codes: 0 ok, 1 PartialFailure (report kept), 2 bad input / parse
 }
 
 TEST_CASE("option checks at parse time: finite, ranges; threads clamped") {
-  TempDir t;
+  Dir t;
   bool ran = false;
   auto body = [&](Tool&, const std::string&) { ran = true; };
   for (const char* bad : {"-1", "0", "1", "nan", "inf"}) {
@@ -96,7 +90,7 @@ TEST_CASE("option checks at parse time: finite, ranges; threads clamped") {
 }
 
 TEST_CASE("outputs: never an input (either order), '' and a directory refused, '-' has no default report") {
-  TempDir t;
+  Dir t;
   std::ofstream(t / "in.msh") << "x";
   auto in_then_out = [&](Tool& tool, const std::string& out) {
     tool.input(t / "in.msh");

@@ -13,25 +13,13 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/path_guard.hpp"
+#include "../temp_dir.hpp"
 
 using namespace quadapt;
+using quadapt::test::TempDir;
 namespace fs = std::filesystem;
 
 namespace {
-struct TempDir {
-  fs::path dir;
-  TempDir() {
-    std::string t = (fs::temp_directory_path() / "quadapt-atomic-XXXXXX").string();
-    REQUIRE(mkdtemp(t.data()));
-    dir = t;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string operator/(const std::string& name) const { return (dir / name).string(); }
-  size_t entries() const { return std::distance(fs::directory_iterator(dir), fs::directory_iterator()); }
-};
 std::string slurp(const std::string& p) {
   std::ifstream in(p);
   std::stringstream s;
