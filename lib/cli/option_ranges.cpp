@@ -34,7 +34,6 @@ const std::vector<OptionRange>& option_ranges() {
   // clang-format off
   static const std::vector<OptionRange> table = {
       // tool            option                     lo     hi     lo_open hi_open
-      {"*",              "--threads",               0,     kInf,  false, false},
       {"*",              "--rtol",                  0,     1,     true,  true},
       {"*",              "--penalty",               0,     kInf,  true,  false},
       {"*",              "--max-iterations",        1,     kInf,  false, false},
@@ -96,11 +95,9 @@ void replace_validator(CLI::Option* opt, const std::string& description, const C
   }
 }
 
-// CLI11's PositiveNumber / NonNegativeNumber print a 310-digit bound and let NaN through: the
-// same intervals, finite and readable. CLI::ExistingFile also accepts "-" (standard input).
+// CLI::ExistingFile also accepts "-" (standard input). (Positive / non-negative checks are
+// cli/parse_errors' PositiveValue / NonNegativeValue, which the tools attach themselves.)
 void replace_cli11_checks(CLI::Option* opt) {
-  replace_validator(opt, "POSITIVE", range_check({"*", "", 0, kInf, true, false}));
-  replace_validator(opt, "NONNEGATIVE", range_check({"*", "", 0, kInf, false, false}));
   replace_validator(opt, "FILE",
                     CLI::Validator([](std::string& s) { return s == "-" ? std::string() : CLI::ExistingFile(s); },
                                    "FILE|-", "input file"));

@@ -23,9 +23,8 @@ struct OptionRange {
 const std::vector<OptionRange>& option_ranges();
 
 /// Attaches to the options of `app` (of the tool `tool`) the finiteness check and the ranges of
-/// the table, and replaces CLI11's PositiveNumber / NonNegativeNumber (readable bounds, no NaN)
-/// and ExistingFile (which then also accepts "-", standard input). Called by Tool::run before
-/// parsing, so the tools' own option code needs no change.
+/// the table, and replaces CLI11's ExistingFile by one that also accepts "-" (standard input).
+/// Called by Tool::run before parsing, so the tools' own option code needs no change.
 void apply_option_ranges(const std::string& tool, CLI::App& app);
 
 /// The number of OpenMP threads a tool may use: `requested` (0 = OpenMP's default) clamped to
