@@ -41,7 +41,6 @@ const std::vector<OptionRange>& option_ranges() {
       {"*",              "--max-anisotropy",        1,     kInf,  false, false},
       {"*",              "--complexity",            0,     kInf,  true,  false},
       {"*",              "--gradation",             0,     kInf,  false, false},
-      {"dgsolve",        "--degree",                1,     8,     false, false},
       {"lpcvt",          "--scale",                 0,     kInf,  true,  false},
       {"lpcvt",          "--weight",                0,     kInf,  false, false},
       {"lpcvt",          "--initial",               0,     kInf,  false, false},

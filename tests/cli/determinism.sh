@@ -39,7 +39,7 @@ for t in tri quad smooth bamg; do
 done
 python3 - a/tri-a.json c/tri-c.json <<'PY'
 import json, sys
-skip = {"timings", "command", "outputs", "options", "peak_memory_mb", "threads", "seconds", "time_s"}
+skip = {"timings", "command", "outputs", "options", "peak_memory_mb", "threads", "seconds", "time_s", "provenance"}
 def strip(x):
     if isinstance(x, dict): return {k: strip(v) for k, v in x.items() if k not in skip and not k.endswith("seconds")}
     if isinstance(x, list): return [strip(v) for v in x]

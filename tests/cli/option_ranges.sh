@@ -16,7 +16,6 @@ expect_exit 2 "--rtol: -1 is not in (0, 1)" dgsolve m.msh -c "$C" -p 1 -o x.msh 
 expect_exit 2 "--rtol" adjoint sol.msh -c "$C" -o x.msh --rtol 2
 expect_exit 2 "--penalty: -5 is not in (0, inf)" dgsolve m.msh -c "$C" -p 1 -o x.msh --penalty -5
 expect_exit 2 "--penalty: nan is not a finite number" dgsolve m.msh -c "$C" -p 1 -o x.msh --penalty nan
-expect_exit 2 "--degree: 9 is not in [1, 8]" dgsolve m.msh -c "$C" -p 9 -o x.msh
 expect_exit 2 "--scale: -1 is not in (0, inf)" lpcvt frame.msh -o x.msh --scale -1
 expect_exit 2 "--scale: 0 is not in (0, inf)" lpcvt frame.msh -o x.msh --scale 0
 expect_exit 2 "--scale: inf is not a finite number" lpcvt frame.msh -o x.msh --scale inf
