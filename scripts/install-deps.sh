@@ -6,7 +6,8 @@ set -euo pipefail
 PKGS=(build-essential cmake pkg-config
       libeigen3-dev libcgal-dev libgmsh-dev gmsh libcli11-dev nlohmann-json3-dev
       doctest-dev liblbfgspp-dev liblemon-dev libsuitesparse-dev freefem++ python3 python3-matplotlib python3-numpy
-      librsvg2-bin python3-vtk9 xvfb)
+      librsvg2-bin python3-vtk9 xvfb
+      clang libclang-rt-14-dev)  # libFuzzer targets (tests/fuzz, docs/fuzzing.md)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

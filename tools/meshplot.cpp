@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
     tool.input(in);
     // The report goes to PICTURE.json by default (e.g. sol.png.json), never over the mesh's own
     // report (sol.json from dgsolve) as the usual OUTPUT-with-.json rule would.
-    if (tool.report_path().empty()) tool.set_report_path(out + ".json");
+    if (tool.report_path().empty() && out != "-") tool.set_report_path(out + ".json");
     tool.output(out);
     plot::picture_format(out);  // unknown extension -> error before any work
     plot::MeshPlotOptions opt;
@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     Mesh m;
     {
       auto ph = tool.phase("read");
-      m = read_msh(in);
+      m = read_valid_msh(in);
     }
     plot::check_plot_field(m, field, in);
     const bool is_dg = !field.empty() && !m.cell_field(field) && m.cell_node_field(field);

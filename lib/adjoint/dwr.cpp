@@ -110,6 +110,7 @@ DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U
     throw InputError(cs.path, "the case has no functional; add \"functional\": {\"boundary\": NAME} "
                               "(J = integral of u^2 over that boundary)");
   check_case_boundaries(cs, mesh);
+  check_case_finite(cs, mesh);
   const int nc = mesh.num_cells();
   // the fine space has degree p + 1, which the DG library must support
   check_degree(p, "adjoint: the solution's degree p =", kMaxAdjointDegree);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
@@ -184,6 +185,26 @@ void check_case_boundaries(const Case& cs, const Mesh& mesh) {
   if (cs.has_functional() && mesh.find_group(cs.functional_boundary) < 0)
     throw InputError(cs.path, "functional boundary '" + cs.functional_boundary +
                                   "' is not a boundary group of the mesh (groups: " + list() + ")");
+}
+
+void check_case_finite(const Case& cs, const Mesh& mesh) {
+  const ExactSolution ex(cs);
+  std::vector<double> scratch(ex.scratch_size());
+  const char* what[] = {"the exact solution", "the exact solution's x-derivative",
+                        "the exact solution's y-derivative", "the source term"};
+  auto check = [&](const Vec2& x) {
+    double out[ExactSolution::NUM_OUTPUTS];
+    ex.eval(x.x(), x.y(), out, scratch.data());
+    for (int k = 0; k < ExactSolution::NUM_OUTPUTS; ++k)
+      if (!std::isfinite(out[k])) {
+        char at[96];
+        std::snprintf(at, sizeof at, "(%.3e, %.3e)", x.x(), x.y());
+        throw InputError(cs.path, what[k] + std::string(" of '") + cs.exact_source + "' is not finite at " + at +
+                                      " (a point of the mesh)");
+      }
+  };
+  for (const Vec2& x : mesh.nodes) check(x);
+  for (int c = 0; c < mesh.num_cells(); ++c) check(cell_centroid(mesh, c));
 }
 
 ExactSolution::ExactSolution(const Case& cs) {

@@ -10,7 +10,9 @@
 #include "cli/help_examples.hpp"
 #include "cli/parse_errors.hpp"
 #include "cli/provenance.hpp"
+#include "cli/option_ranges.hpp"
 #include "core/atomic_file.hpp"
+#include "core/path_guard.hpp"
 
 namespace quadapt {
 
@@ -18,7 +20,8 @@ namespace {
 constexpr const char* kExitCodes =
     "Exit codes: 0 success; 1 failure but a valid output was saved; 2 bad input or failure, "
     "nothing written; 3 internal error.";
-}
+
+}  // namespace
 
 Tool::Tool(std::string name, std::string summary, std::string details)
     : name_(std::move(name)), app_(summary, name_) {
@@ -31,30 +34,52 @@ Tool::Tool(std::string name, std::string summary, std::string details)
                   "JSON report path (default: the output path with extension .json)");
   app_.add_flag("-q,--quiet", quiet_, "No progress messages on stderr");
   app_.add_option("--threads", threads_,
-                  "OpenMP threads (default: OMP_NUM_THREADS, else all cores)")
+                  "OpenMP threads (default: OMP_NUM_THREADS, else all cores; at most 4 x the cores)")
       ->check(NonNegativeValue);
   report_ = nlohmann::json::object();
 }
 
+void Tool::use_stdio(const std::string& path, bool& used, const char* what) {
+  if (path != "-") return;
+  if (used) throw InputError("-", std::string("standard ") + what + " is used twice; give a file name");
+  used = true;
+}
+
 void Tool::input(const std::string& path) {
+  use_stdio(path, stdin_used_, "input");
+  protect_input(path);
   inputs_.push_back(path);
   report_["inputs"].push_back(path);
 }
 
 void Tool::output(const std::string& path) {
-  check_not_an_input(path, inputs_);
-  const auto key = [](const std::string& p) { return std::filesystem::absolute(p).lexically_normal(); };
-  for (const std::string& o : outputs_)
-    if (key(o) == key(path)) throw InputError(path, "given for two outputs; choose another path");
-  if (!report_path_.empty() && key(report_path_) == key(path))
-    throw InputError(path, "output would overwrite the report " + report_path_ + "; choose another path");
+  // "", a directory, a missing folder: exit 2 before anything is written.
+  const OutputTarget target = resolve_output(path);
+  use_stdio(path, stdout_used_, "output");
+  protect_output(path);
   outputs_.push_back(path);
   report_["outputs"].push_back(path);
-  if (report_path_.empty()) {
-    std::filesystem::path p(path);
-    report_path_ = p.replace_extension(".json").string();
+  if (!report_decided_) {
+    report_decided_ = true;
+    // Beside the first output; none when that is standard output, a device or a FIFO (unless
+    // --report): /dev/stdout.json is nobody's report.
+    if (report_path_.empty() && target.kind == OutputTarget::Kind::Regular)
+      report_path_ = std::filesystem::path(path).replace_extension(".json").string();
+    declare_report();
   }
-  check_not_an_input(report_path_, inputs_);
+}
+
+void Tool::set_report_path(const std::string& p) {
+  report_path_ = p;
+  report_decided_ = true;
+  declare_report();
+}
+
+void Tool::declare_report() {
+  if (report_path_.empty()) return;
+  resolve_output(report_path_);
+  use_stdio(report_path_, stdout_used_, "output");
+  protect_output(report_path_);
 }
 
 void Tool::log(const std::string& msg) const {
@@ -82,10 +107,6 @@ void Tool::write_report() {
   report_["provenance"] = prov;
   report_["timings"]["total"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  if (report_path_ == "-") {
-    std::cout << report_.dump(2) << std::endl;
-    return;
-  }
   if (report_path_.empty()) return;
   atomic_write(report_path_, [&](std::ostream& os) { os << report_.dump(2) << "\n"; });
 }
@@ -96,6 +117,7 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   std::ostringstream cmd;
   for (int i = 0; i < argc; ++i) cmd << (i ? " " : "") << argv[i];
   report_["command"] = cmd.str();
+  apply_option_ranges(name_, app_);
   try {
     app_.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help, --version
@@ -105,7 +127,9 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
               << std::endl;
     return 2;
   }
-  if (threads_ > 0) omp_set_num_threads(threads_);
+  const int threads = clamp_threads(threads_);
+  if (threads_ > threads) log("--threads " + std::to_string(threads_) + " is more than this machine runs; using " + std::to_string(threads));
+  omp_set_num_threads(threads);
   // Record every option's effective value (defaults included) as provenance.
   for (const CLI::Option* opt : app_.get_options()) {
     if (opt->get_name() == "--help" || opt->get_name() == "--version") continue;
@@ -120,6 +144,12 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
       report_["options"][key] = res;
     }
   }
+  report_["options"]["threads"] = threads;  // the effective count
+  clear_protected_paths();  // one run per process; tests run several
+  enable_input_guard();
+  struct GuardOff {
+    ~GuardOff() { enable_input_guard(false); }
+  } guard_off;
   try {
     body();
     write_report();

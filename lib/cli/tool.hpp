@@ -44,10 +44,16 @@ class Tool {
   /// Parses argv and runs body. Returns the exit code (use: return tool.run(argc, argv, ...)).
   int run(int argc, char** argv, const std::function<void()>& body);
 
-  /// Declares an input file (recorded in the report; outputs may never overwrite it).
+  /// Declares an input file ("-": standard input), recorded in the report. No output may be
+  /// the same file (core/path_guard: through symlinks, hard links and ..), whichever of the two
+  /// is declared first; files read through read_msh / read_text_file are protected as well.
   void input(const std::string& path);
-  /// Declares an output file: checks it is not an input; the default report path becomes
-  /// OUTPUT with its extension replaced by .json. Call before writing.
+  /// Declares an output file ("-": standard output; see core/atomic_file for symlinks, devices
+  /// and FIFOs). Throws InputError (exit 2, nothing written) for "", a directory, a missing
+  /// folder, an input, or standard output used twice. The first output decides the default
+  /// report path: OUTPUT with its extension replaced by .json (none when OUTPUT is "-", a
+  /// device or a FIFO).
+  /// Call before writing.
   void output(const std::string& path);
 
   /// The JSON report. Put computed figures at top level (e.g. report()["dofs"] = n);
@@ -79,18 +85,24 @@ class Tool {
   /// Writes the report now (atomically). run() calls this after a successful body, and after
   /// PartialFailure. A tool whose report goes to stdout (meshquality) calls set_report_path("-").
   void write_report();
-  void set_report_path(const std::string& p) { report_path_ = p; }
+  void set_report_path(const std::string& p);
   const std::string& report_path() const { return report_path_; }
 
   const std::string& name() const { return name_; }
 
  private:
+  void declare_report();
+  static void use_stdio(const std::string& path, bool& used, const char* what);
+
   std::string name_;
   CLI::App app_;
   nlohmann::json report_;
   std::vector<std::string> inputs_;
   std::vector<std::string> outputs_;
   std::string report_path_;
+  bool report_decided_ = false;
+  bool stdin_used_ = false;
+  bool stdout_used_ = false;
   bool quiet_ = false;
   int threads_ = 0;
   std::chrono::steady_clock::time_point start_;

@@ -1,29 +1,50 @@
 #pragma once
-// Atomic output: write to a temporary file beside the target, then rename over it, so that a
-// reader (or an interrupted Makefile loop) never sees a half-written file.
+// Output files: what a path given to -o / --report means, and writing it so that a reader (or an
+// interrupted Makefile loop) never sees a half-written file.
+//
+// resolve_output(path):
+//   "-"                      standard output (written directly)
+//   a regular file or a new  written to a temporary file beside it, then renamed over it
+//     name                     (atomic replace)
+//   a symlink                followed (up to 40 links) and the rule applied to its final target,
+//                              so the link stays and its target is replaced
+//   a device, FIFO, socket   opened and written directly (no temporary, no rename)
+//   "" / a directory / a     InputError "PATH: ..." before anything is written
+//     missing parent folder
+// Every write first checks (core/path_guard) that the final target is not an input.
 #include <functional>
 #include <iosfwd>
 #include <string>
-#include <vector>
 
 namespace quadapt {
 
-/// Writes `path` atomically: `writer` fills a stream on "path.tmp-PID", which is renamed to
-/// `path` only if writer returns normally and the stream is good. On any exception the
-/// temporary is removed and the exception propagates. Throws ExternalError on I/O failure.
+struct OutputTarget {
+  enum class Kind { Stdout, Regular, Special };
+  Kind kind = Kind::Regular;
+  /// The path to write: for Regular the final target of any symlinks (the temporary is made
+  /// beside it); for Special the path as given; "-" for Stdout.
+  std::string path;
+};
+
+/// Classifies `path` as above. Throws InputError for "", a directory, a missing parent
+/// directory, or a symlink loop.
+OutputTarget resolve_output(const std::string& path);
+
+/// Writes `path` (see resolve_output): for a regular file `writer` fills a stream on a
+/// temporary ".STEM.tmp-PID.EXT" beside the target, which is renamed over it only if writer
+/// returns normally and the stream is good; on any exception the temporary is removed and the
+/// exception propagates. Throws ExternalError on I/O failure.
 void atomic_write(const std::string& path, const std::function<void(std::ostream&)>& writer,
                   bool binary = false);
 
-/// Same, for writers that need a file name (e.g. the Gmsh SDK or an external program): `writer`
-/// receives the temporary path to create; it is renamed to `path` afterwards.
+/// Same, for writers that need a file name (e.g. an external program): `writer` receives a
+/// temporary path to create (same extension as `path`); it is renamed to the target afterwards,
+/// or copied to standard output / the device.
 void atomic_write_via_path(const std::string& path,
                            const std::function<void(const std::string& tmp_path)>& writer);
 
-/// Throws InputError if `output` names the same file as one of `inputs` (never overwrite an
-/// input). Compares canonical paths when the files exist, else lexically normalised paths.
-void check_not_an_input(const std::string& output, const std::vector<std::string>& inputs);
-
-/// Reads a whole text file; throws InputError("path: cannot open ...") if it cannot.
+/// Reads a whole text file ("-": standard input) and records it as an input (path_guard);
+/// throws InputError("path: cannot open ...") if it cannot.
 std::string read_text_file(const std::string& path);
 
 }  // namespace quadapt

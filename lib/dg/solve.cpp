@@ -28,6 +28,7 @@ std::vector<int> downwind_order(const Mesh& mesh, const Eigen::Vector2d& c) {
 
 DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& opt) {
   DGSolveResult r;
+  check_case_finite(cs, mesh);
   auto t0 = std::chrono::steady_clock::now();
   DGDiscretization dg(mesh, cs, opt.p, opt.dg);
   SparseMatrixCSC A;

@@ -31,14 +31,16 @@
 
 namespace quadapt {
 
-/// Reads a mesh with its fields. Throws InputError naming `path` and the problem.
+/// Reads a mesh with its fields ("-": standard input) and records `path` as an input of this
+/// process (core/path_guard). Throws InputError naming `path` and the problem.
 Mesh read_msh(const std::string& path);
 
 /// read_msh, then validate_mesh(mesh, path, v): how a tool takes an input mesh.
 Mesh read_valid_msh(const std::string& path, const ValidateOptions& v = {});
 
-/// Writes MSH 4.1 ASCII atomically (temporary file + rename), and PATH.opt beside it when the
-/// mesh has a DG field, so Gmsh displays it smoothly (io/gmsh_options.hpp).
+/// Writes MSH 4.1 ASCII through atomic_write ("-": standard output; see core/atomic_file), and
+/// PATH.opt beside it when the mesh has a DG field and PATH is a regular file, so Gmsh displays
+/// it smoothly (io/gmsh_options.hpp).
 void write_msh(const Mesh& mesh, const std::string& path);
 
 /// Stream variants (path only used in messages).

@@ -3,11 +3,13 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <set>
 #include <sstream>
 #include <unordered_map>
 
+#include "core/path_guard.hpp"
 #include "io/gll_scheme.hpp"
 #include "io/msh.hpp"
 #include "io/msh_cursor.hpp"
@@ -589,8 +591,10 @@ Mesh read_msh(std::istream& in, const std::string& path_for_messages) {
 }
 
 Mesh read_msh(const std::string& path) {
+  if (path == "-") return read_msh(std::cin, "standard input");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::string("cannot open (") + std::strerror(errno) + ")");
+  protect_input(path);
   return read_msh(in, path);
 }
 

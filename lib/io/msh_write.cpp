@@ -93,7 +93,24 @@ std::vector<Run> runs(int n, F key) {
   return r;
 }
 
-void check_writable(const Mesh& m) {
+// The first cell (1-based, as in the file) whose `per_cell` values hold a NaN or infinity, or 0.
+size_t first_non_finite(const std::vector<double>& v, size_t per_cell) {
+  for (size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i])) return i / per_cell + 1;
+  return 0;
+}
+
+void check_writable(const Mesh& m, const std::string& path) {
+  // A result that is not a number is never written as if it were one (exit 2 naming the file).
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if (!m.nodes[i].allFinite())
+      throw NumericalError(path + ": refusing to write a non-finite coordinate (node " + std::to_string(i + 1) + ")");
+  for (const CellField& f : m.cell_fields)
+    if (size_t c = first_non_finite(f.values, std::max(f.ncomp, 1)))
+      throw NumericalError(path + ": refusing to write field '" + f.name + "': not finite in cell " + std::to_string(c));
+  for (const CellNodeField& f : m.cell_node_fields)
+    if (size_t c = first_non_finite(f.values, std::max(f.per_cell * f.ncomp, 1)))
+      throw NumericalError(path + ": refusing to write field '" + f.name + "': not finite in cell " + std::to_string(c));
   for (const Cell& c : m.cells) {
     if (c.nv != 3 && c.nv != 4) throw Error("write_msh: a cell has " + std::to_string(c.nv) + " vertices");
     for (int i = 0; i < c.nv; ++i)
@@ -185,7 +202,7 @@ void write_view_header(Out& o, const std::string& name, const std::string& schem
 }  // namespace
 
 void write_msh(const Mesh& m, std::ostream& os) {
-  check_writable(m);
+  check_writable(m, "write_msh");
   Out o(os);
   const int nc = m.num_cells(), ne = static_cast<int>(m.boundary.size());
   const int q = m.geometric_order();
@@ -308,7 +325,7 @@ void write_msh(const Mesh& m, std::ostream& os) {
 }
 
 void write_msh(const Mesh& mesh, const std::string& path) {
-  check_writable(mesh);
+  check_writable(mesh, path);
   atomic_write(path, [&](std::ostream& os) { write_msh(mesh, os); });
   write_gmsh_options(mesh, path);
 }

@@ -97,7 +97,13 @@ void DelaunayGraph::tables() {
     cc.reserve(dt.number_of_faces());
     for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
       f->info() = static_cast<int>(cc.size());
-      Point c = CGAL::circumcenter(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+      // from the smallest site index on, so that the rounding does not depend on which
+      // rotation of the triangle the face record holds (that depends on the flip history)
+      int r = 0;
+      for (int k = 1; k < 3; ++k)
+        if (f->vertex(k)->info() < f->vertex(r)->info()) r = k;
+      Point c = CGAL::circumcenter(f->vertex(r)->point(), f->vertex(DT::ccw(r))->point(),
+                                   f->vertex(DT::cw(r))->point());
       cc.emplace_back(c.x(), c.y());
     }
   }
@@ -204,7 +210,10 @@ bool DelaunayGraph::update(const std::vector<Vec2>& sites, int* flips) {
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
     for (int i = 0; i < 3; ++i) {
       DT::Face_handle g = f->neighbor(i);
-      if (!dt.is_infinite(g) && &*f < &*g) stack.emplace_back(f, i);
+      // each interior edge once, from the face that sees it as (smaller, larger) site index
+      // (not by comparing face addresses, which differ from run to run)
+      if (!dt.is_infinite(g) && f->vertex(DT::ccw(i))->info() < f->vertex(DT::cw(i))->info())
+        stack.emplace_back(f, i);
     }
   int nflip = 0;
   while (!stack.empty()) {

@@ -219,6 +219,12 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
       fail("field '" + f.name + "' of degree " + std::to_string(f.degree) + " has " + std::to_string(f.per_cell) +
            " values per cell, expected " + std::to_string((f.degree + 1) * (f.degree + 1)));
   }
+  auto finite = [&](const std::string& name, const std::vector<double>& v, size_t per_cell) {
+    for (size_t i = 0; i < v.size(); ++i)
+      if (!std::isfinite(v[i])) fail("field '" + name + "' is not finite in cell " + std::to_string(i / per_cell + 1));
+  };
+  for (const CellField& f : m.cell_fields) finite(f.name, f.values, f.ncomp);
+  for (const CellNodeField& f : m.cell_node_fields) finite(f.name, f.values, size_t(f.per_cell) * f.ncomp);
   for (const std::string& want : opt.required_fields)
     if (!m.cell_field(want) && !m.cell_node_field(want))
       fail("field '" + want + "' not found (" + (fields.empty() ? std::string("the file has no fields") : "fields: " + list(fields)) + ")");

@@ -34,9 +34,10 @@ struct ValidateOptions {
 /// non-finite coordinate; a node index out of range; an inverted (negative Jacobian at a corner)
 /// or degenerate (zero area) cell, naming the cell and its centroid; a boundary edge that is not
 /// a free edge of the mesh; a required boundary group or field missing (listing what exists);
-/// a field whose length does not match the cell count; curved cells when the tool does not
-/// accept them (allow_curved), else control points that do not match the cells or a curved
-/// cell whose sampled Jacobian is not positive (mesh/curved.hpp min_scaled_jacobian).
+/// a field whose length does not match the cell count; a field value that is NaN or infinite;
+/// curved cells when the tool does not accept them (allow_curved), else control points that do
+/// not match the cells or a curved cell whose sampled Jacobian is not positive
+/// (mesh/curved.hpp min_scaled_jacobian).
 void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions& opt = {});
 
 }  // namespace quadapt

@@ -27,6 +27,7 @@ std::string shell_quote(const std::string& s) {
 }  // namespace
 
 PictureFormat picture_format(const std::string& path) {
+  if (path == "-") return PictureFormat::Svg;  // standard output
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext == ".svg") return PictureFormat::Svg;

@@ -6,7 +6,7 @@ set -euo pipefail
 SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
-for t in adjoint dgsolve refine; do command -v $t >/dev/null || { echo "SKIPPED: $t not built"; exit 0; }; done
+for t in adjoint dgsolve refine; do command -v $t >/dev/null || { echo "FAIL: $t not built (tools must be on PATH)" >&2; exit 1; }; done
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }

@@ -7,8 +7,8 @@ SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 FIX=${QUADAPT_FIXTURES_DIR:-$SRC/tests/fixtures/philip}
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
-command -v bamgquad >/dev/null || { echo "SKIPPED: bamgquad not built"; exit 0; }
-command -v ffbamg >/dev/null || [ -n "${QUADAPT_FFBAMG:-}" ] || { echo "SKIPPED: ffbamg (freefem++) not installed"; exit 0; }
+command -v bamgquad >/dev/null || { echo "FAIL: bamgquad not built (tools must be on PATH)" >&2; exit 1; }
+command -v ffbamg >/dev/null || [ -n "${QUADAPT_FFBAMG:-}" ] || { echo "SKIPPED: ffbamg (freefem++) not installed"; exit 77; }
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }

@@ -5,7 +5,7 @@ set -euo pipefail
 SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
-command -v estimate-frame >/dev/null || { echo "SKIPPED: estimate-frame not built"; exit 0; }
+command -v estimate-frame >/dev/null || { echo "FAIL: estimate-frame not built (tools must be on PATH)" >&2; exit 1; }
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }

@@ -79,7 +79,8 @@ set +e
 lpcvt "$T/iso.msh" -o "$T/strict.msh" --init density --max-iterations 2 --max-cycles 1 --strict -q
 rc=$?
 set -e
-[ $rc -eq 1 ] && [ -s "$T/strict.msh" ]
+[ $rc -eq 1 ] || { echo "FAIL: --strict on an unconverged run exited $rc, not 1"; exit 1; }
+[ -s "$T/strict.msh" ] || { echo "FAIL: --strict wrote no mesh"; exit 1; }
 
 # 5. bad input: exit 2, one line naming the file, nothing written
 for bad in nofield nan singular; do
@@ -90,10 +91,10 @@ for bad in nofield nan singular; do
   set -e
   [ $rc -eq 2 ] || { echo "bad input $bad: exit $rc"; exit 1; }
   grep -q "bad-$bad.msh" "$T/bad-$bad.err"
-  [ ! -e "$T/out-$bad.msh" ] && [ ! -e "$T/out-$bad.json" ]
+  if [ -e "$T/out-$bad.msh" ] || [ -e "$T/out-$bad.json" ]; then echo "FAIL: output written on bad input $bad"; exit 1; fi
 done
 grep -q "Vinv" "$T/bad-nofield.err"
-grep -q "non-finite" "$T/bad-nan.err"
+grep -q "not finite" "$T/bad-nan.err"
 grep -q "singular" "$T/bad-singular.err"
 # never overwrite the input
 set +e

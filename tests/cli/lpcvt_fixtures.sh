@@ -6,7 +6,7 @@
 # layer p = 2) to keep it fast; docs/bench-lpcvt.md has all eight.
 set -euo pipefail
 D=$QUADAPT_FIXTURES_DIR
-[ -f "$D/input_ss15_fb_p1_3.msh" ] || { echo "lpcvt_fixtures: no fixtures, skipped"; exit 0; }
+[ -f "$D/input_ss15_fb_p1_3.msh" ] || { echo "FAIL: PHiLiP fixture $D/input_ss15_fb_p1_3.msh missing" >&2; exit 1; }
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 for spec in ss15_fb_p1:1:3456 bl15_fb_p2:2:7776; do

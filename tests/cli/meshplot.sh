@@ -4,8 +4,8 @@ set -euo pipefail
 SRC="${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}"
 BIN="${QUADAPT_BIN_DIR:-$SRC/build/bin}"
 export PATH="$BIN:$PATH"
-command -v meshplot >/dev/null || { echo "SKIPPED: meshplot not built"; exit 0; }
-command -v gmsh >/dev/null || { echo "SKIPPED: gmsh (the program) not installed"; exit 0; }
+command -v meshplot >/dev/null || { echo "FAIL: meshplot not built (tools must be on PATH)" >&2; exit 1; }
+command -v gmsh >/dev/null || { echo "SKIPPED: gmsh (the program) not installed"; exit 77; }
 PY=/usr/bin/python3; [ -x "$PY" ] || PY=python3
 T="$(mktemp -d)"; trap 'rm -rf "$T"' EXIT
 cd "$T"

@@ -5,8 +5,8 @@ set -euo pipefail
 SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
-command -v quadsmooth >/dev/null && command -v recombine >/dev/null || { echo "SKIPPED: quad tools not built"; exit 0; }
-command -v gmsh >/dev/null || { echo "SKIPPED: gmsh not installed"; exit 0; }
+command -v quadsmooth >/dev/null && command -v recombine >/dev/null || { echo "FAIL: quad tools not built (tools must be on PATH)" >&2; exit 1; }
+command -v gmsh >/dev/null || { echo "SKIPPED: gmsh not installed"; exit 77; }
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }

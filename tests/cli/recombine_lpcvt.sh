@@ -5,7 +5,7 @@
 set -euo pipefail
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
-for t in lpcvt recombine quadsmooth; do command -v $t >/dev/null || { echo "SKIPPED: $t not built"; exit 0; }; done
+for t in lpcvt recombine quadsmooth; do command -v $t >/dev/null || { echo "FAIL: $t not built (tools must be on PATH)" >&2; exit 1; }; done
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 

@@ -4,7 +4,7 @@ set -euo pipefail
 SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
-command -v refine >/dev/null || { echo "SKIPPED: refine not built"; exit 0; }
+command -v refine >/dev/null || { echo "FAIL: refine not built (tools must be on PATH)" >&2; exit 1; }
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -61,9 +61,9 @@ expect_fail() {  # expect_fail PATTERN ARGS...
   grep -q -- "$pat" "$T/err" || fail "refine $*: message '$(cat "$T/err")' lacks '$pat'"
   [ ! -e "$T/bad.msh" ] && [ ! -e "$T/bad.json" ] || fail "refine $* wrote an output"
 }
-expect_fail "sq4.msh: fraction 0 is outside (0, 1]" "$T/sq4.msh" --by B --fraction 0
-expect_fail "sq4.msh: fraction 1.5 is outside (0, 1]" "$T/sq4.msh" --by B --fraction 1.5
-expect_fail "sq4.msh: fraction -0.2 is outside (0, 1]" "$T/sq4.msh" --by B --fraction -0.2
+expect_fail "--fraction: 0 is not in (0, 1]" "$T/sq4.msh" --by B --fraction 0
+expect_fail "--fraction: 1.5 is not in (0, 1]" "$T/sq4.msh" --by B --fraction 1.5
+expect_fail "--fraction: -0.2 is not in (0, 1]" "$T/sq4.msh" --by B --fraction -0.2
 expect_fail "sq4.msh: no cell field 'A1'" "$T/sq4.msh" --by A1
 expect_fail "u1.msh: no cell field 'B'" "$T/u1.msh" --by B
 expect_fail "sq4.msh: field 'Vinv' has 9 components" "$T/sq4.msh" --by Vinv

@@ -12,10 +12,10 @@ SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
 for t in dgsolve estimate-frame refine; do
-  command -v "$t" >/dev/null || { echo "SKIPPED: $t not built"; exit 0; }
+  command -v "$t" >/dev/null || { echo "FAIL: $t not built (tools must be on PATH)" >&2; exit 1; }
 done
 CASE="$SRC/examples/cases/sshock.json"
-[ -f "$CASE" ] || { echo "SKIPPED: $CASE missing"; exit 0; }
+[ -f "$CASE" ] || { echo "FAIL: $CASE missing" >&2; exit 1; }
 GOLDEN="$SRC/tests/golden/refine/sshock_p2_fraction.json"
 STEPS=6 P=2 FRACTION=0.3 BY=A1 N0=8
 T=$(mktemp -d)

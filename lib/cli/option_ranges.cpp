@@ -1,0 +1,132 @@
+#include "cli/option_ranges.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace quadapt {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string num(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+std::string interval(const OptionRange& r) {
+  return std::string(r.lo_open ? "(" : "[") + num(r.lo) + ", " + num(r.hi) + (r.hi_open || std::isinf(r.hi) ? ")" : "]");
+}
+
+bool parse_number(const std::string& s, double& v) {
+  char* end = nullptr;
+  v = std::strtod(s.c_str(), &end);
+  return end != s.c_str() && *end == '\0';
+}
+}  // namespace
+
+const std::vector<OptionRange>& option_ranges() {
+  // clang-format off
+  static const std::vector<OptionRange> table = {
+      // tool            option                     lo     hi     lo_open hi_open
+      {"*",              "--rtol",                  0,     1,     true,  true},
+      {"*",              "--penalty",               0,     kInf,  true,  false},
+      {"*",              "--max-iterations",        1,     kInf,  false, false},
+      {"*",              "--norm-q",                1,     kInf,  false, false},
+      {"*",              "--max-anisotropy",        1,     kInf,  false, false},
+      {"*",              "--complexity",            0,     kInf,  true,  false},
+      {"*",              "--gradation",             0,     kInf,  false, false},
+      {"lpcvt",          "--scale",                 0,     kInf,  true,  false},
+      {"lpcvt",          "--weight",                0,     kInf,  false, false},
+      {"lpcvt",          "--initial",               0,     kInf,  false, false},
+      {"lpcvt",          "--cells-per-triangle",    0,     kInf,  true,  false},
+      {"lpcvt",          "--delta",                 0,     1,     false, true},
+      {"lpcvt",          "--past",                  1,     kInf,  false, false},
+      {"lpcvt",          "--gtol",                  0,     kInf,  false, false},
+      {"lpcvt",          "--lmin",                  0,     kInf,  false, false},
+      {"lpcvt",          "--lmax",                  0,     kInf,  true,  false},
+      {"lpcvt",          "--change-tol",            0,     1,     false, false},
+      {"lpcvt",          "--ramp-after",            0,     kInf,  false, false},
+      {"size-solve",     "--growth",                0,     kInf,  true,  false},
+      {"size-solve",     "--hmin",                  0,     kInf,  false, false},
+      {"size-solve",     "--hmax",                  0,     kInf,  false, false},
+      {"size-solve",     "--r-max",                 1,     kInf,  false, false},
+      {"size-solve",     "--c-max",                 1,     kInf,  false, false},
+      {"refine",         "--fraction",              0,     1,     true,  false},
+      {"meshplot",       "--glyph-scale",           0,     kInf,  true,  false},
+      {"meshplot",       "--width",                 16,    20000, false, false},
+      {"meshplot",       "--subsample",             0,     64,    false, false},
+  };
+  // clang-format on
+  return table;
+}
+
+CLI::Validator range_check(const OptionRange& r) {
+  return CLI::Validator(
+      [r](std::string& s) {
+        double v;
+        if (!parse_number(s, v)) return std::string();  // the type conversion reports it
+        const bool ok = (r.lo_open ? v > r.lo : v >= r.lo) && (r.hi_open ? v < r.hi : v <= r.hi);
+        return ok ? std::string() : s + " is not in " + interval(r);
+      },
+      "", std::string("range ") + r.option);
+}
+
+// Deactivates the active validator of `opt` described as `description` (CLI11's own name for
+// it) and adds `replacement` instead. No-op when there is none.
+void replace_validator(CLI::Option* opt, const std::string& description, const CLI::Validator& replacement) {
+  for (int k = 0;; ++k) {
+    CLI::Validator* v = nullptr;
+    try {
+      v = opt->get_validator(k);
+    } catch (const CLI::OptionNotFound&) {
+      return;
+    }
+    if (!v->get_active() || v->get_description() != description) continue;
+    v->active(false);
+    opt->check(replacement);
+    return;
+  }
+}
+
+// CLI::ExistingFile also accepts "-" (standard input). (Positive / non-negative checks are
+// cli/parse_errors' PositiveValue / NonNegativeValue, which the tools attach themselves.)
+void replace_cli11_checks(CLI::Option* opt) {
+  replace_validator(opt, "FILE",
+                    CLI::Validator([](std::string& s) { return s == "-" ? std::string() : CLI::ExistingFile(s); },
+                                   "FILE|-", "input file"));
+}
+
+void apply_option_ranges(const std::string& tool, CLI::App& app) {
+  for (CLI::Option* opt : app.get_options()) {
+    if (opt->get_type_size() == 0) continue;  // a flag
+    replace_cli11_checks(opt);
+    const std::string name = opt->get_lnames().empty() ? "" : "--" + opt->get_lnames().front();
+    if (opt->get_type_name() == "FLOAT") {
+      opt->check(CLI::Validator(
+          [](std::string& s) {
+            double v;
+            if (parse_number(s, v) && !std::isfinite(v)) return s + " is not a finite number";
+            return std::string();
+          },
+          "", "finite"));
+    }
+    for (const OptionRange& r : option_ranges()) {
+      if (name != r.option || (std::string(r.tool) != "*" && r.tool != tool)) continue;
+      opt->check(range_check(r));
+    }
+  }
+}
+
+int clamp_threads(long requested) {
+  const long limit = std::max(1, 4 * omp_get_num_procs());
+  if (requested <= 0) requested = omp_get_max_threads();
+  return int(std::clamp(requested, 1L, limit));
+}
+
+}  // namespace quadapt

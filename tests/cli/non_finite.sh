@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Non-finite values (issue #16 items 4 and 6): an exact solution that is not finite on the mesh
+# (log(x-2), 1/(x-x)) is refused by dgsolve and adjoint with exit 2 and a message naming the case
+# file (adjoint used to exit 0 writing a dwr field of NaNs); a NaN in an input field is refused by
+# every reader (meshplot drew it, exit 0), naming the input; inverted cells are refused by meshplot.
+set -euo pipefail
+S=$QUADAPT_SOURCE_DIR
+. "$S/tests/cli/lib/assert.sh"
+in_temp_dir
+cp "$E/meshes/square16.msh" m.msh
+dgsolve -q m.msh -c "$E/cases/smooth.json" -p 1 -o sol.msh
+for ex in 'log(x-2)' '1/(x-x)' 'sqrt(x-0.5)'; do
+  printf '{"exact": "%s", "advection": [1, 0.5], "functional": {"boundary": "right"}}\n' "$ex" > bad.json
+  expect_exit 2 "bad.json: " adjoint -q sol.msh -c bad.json -o a.msh
+  case "$ERR" in *"not finite"*) ;; *) fail "adjoint: $ERR" ;; esac
+  expect_exit 2 "bad.json: " dgsolve -q m.msh -c bad.json -p 1 -o d.msh
+  case "$ERR" in *"not finite"*) ;; *) fail "dgsolve: $ERR" ;; esac
+done
+python3 - sol.msh solnan.msh <<'PY'
+import sys
+t = open(sys.argv[1]).read()
+i = t.index("$ElementNodeData"); j = t.index("\n1 ", i); k = t.index("\n", j + 1)
+p = t[j + 1:k].split(); p[3] = "nan"
+open(sys.argv[2], "w").write(t[:j + 1] + " ".join(p) + t[k:])
+PY
+for cmd in "meshplot solnan.msh -o p.svg" "meshconvert solnan.msh -o p.msh" "estimate-frame solnan.msh -o p.msh" \
+           "adjoint solnan.msh -c $E/cases/smooth.json -o p.msh"; do
+  expect_exit 2 "solnan.msh" $cmd -q
+done
+sed 's/^1 1 5 65 64$/1 1 64 65 5/' m.msh > inverted.msh
+if cmp -s m.msh inverted.msh; then fail "the inverted fixture did not change"; fi
+expect_exit 2 "inverted.msh" meshplot inverted.msh -o p.svg
+for f in a.msh a.json d.msh d.json p.svg p.msh p.json; do
+  if [ -e "$f" ]; then fail "$f written"; fi
+done
+echo "ok: non-finite input refused"

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Numeric options (issue #16 items 2 and 6): a value outside its range, NaN or inf is refused at
+# parse time (exit 2, one line naming the option and its range, nothing written); --threads is
+# clamped to 4 x the cores, never a crash (was SIGSEGV at 100000 in dgsolve and estimate-frame).
+set -euo pipefail
+S=$QUADAPT_SOURCE_DIR
+. "$S/tests/cli/lib/assert.sh"
+in_temp_dir
+cp "$E/meshes/square16.msh" m.msh
+dgsolve -q m.msh -c "$E/cases/smooth.json" -p 1 -o sol.msh
+estimate-frame -q sol.msh -o shape.msh
+size-solve -q shape.msh --complexity 2000 -o frame.msh
+C="$E/cases/smooth.json"
+
+expect_exit 2 "--rtol: -1 is not in (0, 1)" dgsolve m.msh -c "$C" -p 1 -o x.msh --rtol -1
+expect_exit 2 "--rtol" adjoint sol.msh -c "$C" -o x.msh --rtol 2
+expect_exit 2 "--penalty: -5 is not in (0, inf)" dgsolve m.msh -c "$C" -p 1 -o x.msh --penalty -5
+expect_exit 2 "--penalty: nan is not a finite number" dgsolve m.msh -c "$C" -p 1 -o x.msh --penalty nan
+expect_exit 2 "--scale: -1 is not in (0, inf)" lpcvt frame.msh -o x.msh --scale -1
+expect_exit 2 "--scale: 0 is not in (0, inf)" lpcvt frame.msh -o x.msh --scale 0
+expect_exit 2 "--scale: inf is not a finite number" lpcvt frame.msh -o x.msh --scale inf
+expect_exit 2 "--complexity" size-solve shape.msh --complexity -3 -o x.msh
+expect_exit 2 "--fraction" refine m.msh --by u --fraction 1.5 -o x.msh
+expect_exit 2 "--sweeps: must be >= 0 (got -1)" quadsmooth m.msh --sweeps -1 -o x.msh
+expect_exit 2 "--edge-factor: must be > 0 (got 0)" bamgquad frame.msh --edge-factor 0 -o x.msh
+expect_exit 2 "--glyph-scale" meshplot frame.msh --field Vinv --glyph-scale 0 -o x.svg
+expect_exit 2 "--threads: must be >= 0 (got -3)" refine m.msh --uniform -o x.msh --threads -3
+case "$ERR" in *[0-9][0-9][0-9][0-9][0-9][0-9][0-9][0-9][0-9][0-9]*) fail "absurd bound printed: $ERR" ;; esac
+if [ -e x.msh ] || [ -e x.json ] || [ -e x.svg ]; then fail "an output was written"; fi
+
+# --threads 100000: clamped, exit 0, the effective count in the report
+for n in 100000; do
+  dgsolve -q m.msh -c "$C" -p 1 -o t.msh --threads $n
+  estimate-frame -q t.msh -o ts.msh --threads $n
+  OMP_NUM_THREADS=$n estimate-frame -q t.msh -o ts2.msh
+done
+python3 - t.json ts.json ts2.json <<'PY'
+import json, os, sys
+limit = 4 * os.cpu_count()
+for f in sys.argv[1:]:
+    r = json.load(open(f))
+    if not (1 <= r["threads"] <= limit): sys.exit("FAIL: %s threads %r > %d" % (f, r["threads"], limit))
+    if r["options"]["threads"] != r["threads"]: sys.exit("FAIL: %s options.threads %r" % (f, r["options"]["threads"]))
+PY
+echo "ok: option ranges"

@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# Output paths (issue #16 item 1/3, #15 item 2): no tool ever writes over a file it reads — mesh,
+# --frame, --dwr, case — through the same name, `..`, a symlink or a hard link, for outputs and
+# reports alike (exit 2, one line naming the file, input unchanged); `-o ""` and `-o DIR` are exit 2;
+# a symlink output is written through to its target; a device or FIFO is written directly (no
+# report beside it); `-` is standard output for -o / --report (.msh, JSON, SVG) and standard input
+# for an input mesh or case.
+set -euo pipefail
+S=$QUADAPT_SOURCE_DIR
+. "$S/tests/cli/lib/assert.sh"
+in_temp_dir
+cp "$E/meshes/square16.msh" plain.msh
+cp "$E/cases/smooth.json" case.json
+dgsolve -q plain.msh -c case.json -p 1 -o sol.msh
+estimate-frame -q sol.msh -o shape.msh
+size-solve -q shape.msh --complexity 2000 -o frame.msh
+adjoint -q sol.msh -c case.json -o dwr.msh
+mkdir d
+ln -s frame.msh frame_link.msh
+ln frame.msh frame_hard.msh
+sha() { sha256sum plain.msh case.json sol.msh shape.msh frame.msh dwr.msh; }
+sha > before.sha
+
+# 1. every input, every output, every way of naming the same file
+for f in frame.msh ./frame.msh d/../frame.msh "$T/frame.msh" frame_link.msh frame_hard.msh; do
+  expect_exit 2 "$f" meshquality plain.msh --frame frame.msh --report "$f"
+  expect_exit 2 "$f" quadsmooth plain.msh --frame frame.msh -o "$f"
+  expect_exit 2 "$f" quadsmooth plain.msh --frame frame.msh -o q.msh --report "$f"
+  expect_exit 2 "$f" lpcvt frame.msh -o "$f"
+  expect_exit 2 "$f" bamgquad frame.msh -o b.msh --report "$f"
+done
+expect_exit 2 plain.msh meshquality plain.msh --report plain.msh
+expect_exit 2 case.json dgsolve plain.msh -c case.json -p 1 -o case.json
+expect_exit 2 case.json dgsolve plain.msh -c case.json -p 1 -o s.msh --report case.json
+expect_exit 2 case.json adjoint sol.msh -c case.json -o a.msh --report ./case.json
+expect_exit 2 dwr.msh size-solve shape.msh --dwr dwr.msh --complexity 2000 -o dwr.msh
+expect_exit 2 dwr.msh size-solve shape.msh --dwr dwr.msh --complexity 2000 -o f.msh --report d/../dwr.msh
+expect_exit 2 sol.msh estimate-frame sol.msh -o sh.msh --report sol.msh
+expect_exit 2 sol.msh meshplot sol.msh -o p.svg --report sol.msh
+expect_exit 2 "given twice" lpcvt frame.msh -o l.msh --write-frame d/../l.msh
+sha | cmp -s - before.sha || fail "an input changed"
+for f in q.msh q.json s.msh s.json a.msh a.json f.msh f.json sh.msh sh.json p.svg l.msh l.json b.msh; do
+  if [ -e "$f" ]; then fail "$f written although the command was refused"; fi
+done
+if ls -a | grep -q '\.tmp-'; then fail "temporary file left: $(ls -a)"; fi
+
+# 2. empty path, directory, missing folder: exit 2 naming the problem, nothing written
+for tool in meshconvert refine; do
+  args=(); [ $tool = refine ] && args=(--uniform)
+  expect_exit 2 "empty" $tool plain.msh "${args[@]}" -o ""
+  expect_exit 2 "d: is a directory" $tool plain.msh "${args[@]}" -o d
+  expect_exit 2 "nodir" $tool plain.msh "${args[@]}" -o nodir/x.msh
+done
+expect_exit 2 "empty" dgsolve plain.msh -c case.json -p 1 -o ""
+expect_exit 2 "is a directory" meshplot plain.msh -o d
+if [ -n "$(ls d)" ]; then fail "something written into d: $(ls d)"; fi
+
+# 3. a symlink output: the link stays, its target gets the mesh (and the report goes beside the link)
+cp plain.msh target.msh
+ln -s target.msh out_link.msh
+meshconvert -q sol.msh -o out_link.msh
+if [ ! -L out_link.msh ]; then fail "the symlink was replaced"; fi
+meshconvert -q sol.msh -o direct.msh
+same_bytes target.msh direct.msh
+if [ ! -f out_link.json ]; then fail "no report beside the link"; fi
+# a dangling link: its target is created
+ln -s made.msh dangling.msh
+meshconvert -q sol.msh -o dangling.msh
+if [ ! -L dangling.msh ]; then fail "dangling link replaced"; fi
+same_bytes made.msh direct.msh
+
+# 4. a FIFO and a device are written directly; no report is invented beside them
+mkfifo pipe.msh
+cat pipe.msh > from_pipe.msh &
+reader=$!
+meshconvert -q sol.msh -o pipe.msh
+wait $reader
+same_bytes from_pipe.msh direct.msh
+if [ -e pipe.json ]; then fail "report written beside a FIFO"; fi
+meshconvert -q sol.msh -o /dev/null
+if [ -e /dev/null.json ]; then fail "/dev/null.json written"; fi
+if [ ! -c /dev/null ]; then fail "/dev/null is no longer a device"; fi
+
+# 5. "-": standard output for -o (.msh, SVG) and --report (JSON); standard input for inputs
+meshconvert -q sol.msh -o - > stdout.msh
+same_bytes stdout.msh direct.msh
+if [ -e ./-  ] || [ -e ./-.json ]; then fail "a file named - was written"; fi
+meshconvert -q - -o stdin.msh < sol.msh
+same_bytes stdin.msh direct.msh
+meshquality - < plain.msh > q_stdin.json
+meshquality plain.msh > q_file.json
+python3 - q_stdin.json q_file.json <<'PY'
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:])
+for k in ("cells", "area", "physical"):
+    if a[k] != b[k]: sys.exit("FAIL: meshquality from stdin differs in %s" % k)
+PY
+dgsolve -q plain.msh -c - -p 1 -o s_stdin.msh < case.json
+dgsolve -q plain.msh -c case.json -p 1 -o - --report s_rep.json > s_stdout.msh
+python3 - s_rep.json <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+if r["outputs"] != ["-"]: sys.exit("FAIL: outputs %r" % r["outputs"])
+PY
+cmp -s <(grep -v '^"' s_stdout.msh) <(grep -v '^"' s_stdin.msh) || fail "dgsolve -o - differs from -c -"
+meshconvert -q sol.msh -o m.msh --report - > rep_stdout.json
+python3 -c "import json,sys; json.load(open('rep_stdout.json'))" || fail "--report - is not JSON"
+meshplot -q frame.msh --field Vinv -o - > pic.svg
+head -c 200 pic.svg | grep -q '<svg' || fail "meshplot -o - is not SVG"
+expect_exit 2 "standard output is used twice" meshconvert sol.msh -o - --report -
+expect_exit 2 "standard input is used twice" meshquality - --frame -
+echo "ok: output paths"
