@@ -42,6 +42,25 @@ Mat2 rotated_metric(double h1, double h2, double theta) {
   return M;
 }
 
+/// Max over the free sites of |g_fd - g| / |g| (fourth-order central differences, step h).
+double fd_worst(const Background& bg, const std::vector<Vec2>& x, int nfixed, double h) {
+  EnergyResult r = lp_energy(bg, x, 6, true);
+  double worst = 0;
+  for (int i = nfixed; i < static_cast<int>(x.size()); ++i) {
+    Vec2 fd;
+    for (int d = 0; d < 2; ++d) {
+      auto at = [&](double off) {
+        std::vector<Vec2> y = x;
+        y[i][d] += off;
+        return lp_energy(bg, y, 6, false).energy;
+      };
+      fd[d] = (-at(2 * h) + 8 * at(h) - 8 * at(-h) + at(-2 * h)) / (12 * h);
+    }
+    worst = std::max(worst, (fd - r.grad[i]).norm() / r.grad[i].norm());
+  }
+  return worst;
+}
+
 }  // namespace
 
 TEST_CASE("metric in-circle: invariant under the map, sign as the Euclidean test in the mapped plane") {
@@ -121,21 +140,7 @@ TEST_CASE("metric cells: gradient matches central finite differences") {
     bg.set_metric_cells(true);
     int nfixed = 0;
     auto x = boundary_and_random(bg, 25, 9 + kind, nfixed);
-    EnergyResult r = lp_energy(bg, x, 6, true);
-    const double h = 1e-6 * std::sqrt(bg.area());
-    double worst = 0;
-    for (int i = nfixed; i < static_cast<int>(x.size()); ++i) {
-      Vec2 fd;
-      for (int d = 0; d < 2; ++d) {
-        auto at = [&](double off) {
-          std::vector<Vec2> y = x;
-          y[i][d] += off;
-          return lp_energy(bg, y, 6, false).energy;
-        };
-        fd[d] = (-at(2 * h) + 8 * at(h) - 8 * at(-h) + at(-2 * h)) / (12 * h);
-      }
-      worst = std::max(worst, (fd - r.grad[i]).norm() / r.grad[i].norm());
-    }
+    const double worst = fd_worst(bg, x, nfixed, 1e-6 * std::sqrt(bg.area()));
     MESSAGE("metric cells, max relative FD error " << worst);
     CHECK(worst < 1e-5);
   }
@@ -148,21 +153,7 @@ TEST_CASE("metric cells: gradient matches finite differences with a discontinuou
   bg.set_metric_cells(true);
   int nfixed = 0;
   auto x = boundary_and_random(bg, 40, 5, nfixed);
-  EnergyResult r = lp_energy(bg, x, 6, true);
-  const double h = 1e-6;
-  double worst = 0;
-  for (int i = nfixed; i < static_cast<int>(x.size()); ++i) {
-    Vec2 fd;
-    for (int d = 0; d < 2; ++d) {
-      auto at = [&](double off) {
-        std::vector<Vec2> y = x;
-        y[i][d] += off;
-        return lp_energy(bg, y, 6, false).energy;
-      };
-      fd[d] = (-at(2 * h) + 8 * at(h) - 8 * at(-h) + at(-2 * h)) / (12 * h);
-    }
-    worst = std::max(worst, (fd - r.grad[i]).norm() / r.grad[i].norm());
-  }
+  const double worst = fd_worst(bg, x, nfixed, 1e-6);
   MESSAGE("metric cells, sampled metric: max relative FD error " << worst);
   CHECK(worst < 1e-5);
 }
