@@ -103,12 +103,9 @@ Mesh metric_pairing(const Mesh& tri, const std::vector<Eigen::Matrix2d>& M,
   for (lemon::ListGraph::EdgeIt e(g); e != lemon::INVALID; ++e)
     if (mwm.matching(e)) chosen.push_back(pair_of[e]);
   std::sort(chosen.begin(), chosen.end());
-  Mesh out;
-  out.nodes = tri.nodes;
-  out.boundary = tri.boundary;
-  out.groups = tri.groups;
-  out.domain_name = tri.domain_name;
-  out.domain_tag = tri.domain_tag;
+  Mesh out = tri;  // nodes, boundary groups and names; cells rebuilt below, no fields
+  out.cells.clear();
+  out.clear_fields();
   double qsum = 0;
   for (int k : chosen) {
     const Pair& p = pairs[k];
