@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   LpcvtOptions& opt = job.lpcvt;
   opt = analytic_mode ? LpcvtOptions::for_analytic() : LpcvtOptions::for_frame();
   job.metric_cells = !analytic_mode;
+  if (!analytic_mode) job.gradation = 2.0;  // docs/lpcvt.md "Gradation": frames' default
   std::string in, out, analytic, voronoi_out, init, convention = "auto", frame_out, cells_kind;
   int grid = 16, initial = -1;
   bool sampled = false, strict = false, no_exact = false;
@@ -63,7 +64,7 @@ int main(int argc, char** argv) {
   app.add_option("--smooth", job.smooth, "Log-Euclidean smoothing of the metric M^T M across background cells: passes (0 = none)")
       ->capture_default_str()->check(CLI::Range(0, 1000));
   app.add_option("--gradation", job.gradation, "Anisotropic size gradation: growth per unit metric length between "
-                 "neighbouring background cells (0 = none); the point count is kept")->capture_default_str();
+                 "neighbouring background cells (0 = none; frames' default 2, --analytic's 0); the point count is kept");
   app.add_option("--cells-per-triangle", job.cells_per_triangle, "Final all-quad cells per triangle that recombine "
                  "gives (2 in theory; 1.92-2.01 measured): the point count is sized by 2/R")
       ->capture_default_str()->check(CLI::Range(1.0, 3.0));

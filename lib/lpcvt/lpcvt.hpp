@@ -121,7 +121,7 @@ double frame_metric_scale();
 void attach_frame(Mesh& m, const Background& bg);
 
 /// Makes the triangulation m Delaunay in bg's metric (metric_graph.hpp): Lawson flips with the
-/// metric of the background cell at each edge's midpoint; boundary edges are never flipped.
+/// metric of the background cell at each flip quadrilateral's centroid; boundary edges are never flipped.
 /// Returns the number of flips.
 long metric_flip_triangles(Mesh& m, const Background& bg);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace quadapt::lpcvt {
 
@@ -59,6 +60,8 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
     for (int k = 2; k >= 0; --k)
       if (T[t].nb[k] > t) stack.emplace_back(t, k);
   const long cap = 20L * std::max(n, 1);
+  auto edge_key = [n](int a, int b) { return static_cast<long long>(std::min(a, b)) * n + std::max(a, b); };
+  std::unordered_set<long long> removed;
   constexpr double tol = 1e-9;
   while (!stack.empty()) {
     auto [t, k] = stack.back();
@@ -70,12 +73,16 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
     if (T[u].nb[l] != t) continue;
     const int d = T[u].v[l];
     if (T[u].v[(l + 1) % 3] != q || T[u].v[(l + 2) % 3] != p) continue;  // stale entry
-    const Eigen::Matrix2d M = metric(x[p], x[q]);
+    const Eigen::Matrix2d M = metric({x[c], x[p], x[d], x[q]});
     if (!(metric_incircle(M, x[c], x[p], x[q], x[d]) > tol)) continue;
     // strictly convex quadrilateral c p d q: both new triangles positive (relative to size)
     const double s = (x[d] - x[c]).squaredNorm();
     if (!(cross2(x[p] - x[c], x[d] - x[c]) > 1e-12 * s) || !(cross2(x[d] - x[c], x[q] - x[c]) > 1e-12 * s))
       continue;
+    // an edge removed by a flip is never made again: with a metric that varies, Lawson's flips
+    // have no potential that decreases and can cycle (an S-shock frame, 1668 triangles: 39,680
+    // flips until the cap); with a constant metric no removed edge is ever made again anyway
+    if (removed.count(edge_key(c, d))) continue;
     if (g.flips >= cap) {
       g.capped = true;
       break;
@@ -88,6 +95,7 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
     T[u].nb = {D, A, t};
     if (C >= 0) T[C].nb[index_of(T[C].nb, u)] = t;
     if (A >= 0) T[A].nb[index_of(T[A].nb, t)] = u;
+    removed.insert(edge_key(p, q));
     ++g.flips;
     // the four outer edges may now fail the test
     stack.emplace_back(t, 0);

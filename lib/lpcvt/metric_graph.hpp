@@ -13,16 +13,20 @@
 // bounded by the G-bisectors  2 (x_j - x_i)^T G_Q y = x_j^T G_Q x_j - x_i^T G_Q x_i  (straight
 // lines in x, so the pieces stay convex polygons). The neighbours j that matter are those of the
 // Delaunay triangulation of the mapped sites M_Q x. We take the Euclidean Delaunay triangulation
-// and apply Lawson flips with the metric in-circle test, the metric of an edge being that of the
-// background cell at its midpoint: for a constant metric this gives exactly the Delaunay
+// and apply Lawson flips with the metric in-circle test, the metric of a flip quadrilateral being
+// that of the background cell at its centroid (the mean of its four corners): for a constant metric this gives exactly the Delaunay
 // triangulation of the mapped sites (Lawson's flip algorithm in the mapped plane; convexity of
 // the flip quadrilateral is affine-invariant); for a graded metric, the local one.
 //
 // Flip rule: edge (a, b) with opposite vertices c (triangle a b c, CCW) and d is flipped when d is
 // strictly inside the circle through M a, M b, M c (relative tolerance 1e-10 on the in-circle
 // determinant, so that co-circular squares of a metric lattice stay as they are) and the
-// quadrilateral a d b c is strictly convex. A cap of 20 flips per site guards against cycling
-// across metric jumps (reported).
+// quadrilateral a d b c is strictly convex. The metric belongs to the quadrilateral, not to the
+// edge: the test of the flipped diagonal (c, d) in the same quadrilateral uses the same metric and
+// so never asks to flip back. With the metric at the edge's midpoint instead, the two diagonals
+// of a quadrilateral straddling a metric jump see different metrics and flip back and forth
+// (an S-shock frame, 1623 triangles: 16,780 flips until the cap, a cell with scaled Jacobian
+// 0.007 in the quads). A cap of 20 flips per site guards against longer cycles (reported).
 #include <array>
 #include <functional>
 #include <vector>
@@ -43,9 +47,10 @@ struct MetricGraph {
   const int* nbr_end(int i) const { return adj.data() + ptr[i + 1]; }
 };
 
-/// The metric (2x2, any matrix whose M^T M is the Riemannian metric) to use for the edge (a, b);
-/// the zero matrix: never flip it.
-using EdgeMetric = std::function<Eigen::Matrix2d(const Vec2& a, const Vec2& b)>;
+/// The metric (2x2, any matrix whose M^T M is the Riemannian metric) to use for the flip
+/// quadrilateral with these four corners (the same for both of its diagonals); the zero matrix:
+/// never flip there.
+using EdgeMetric = std::function<Eigen::Matrix2d(const std::array<Vec2, 4>& corners)>;
 
 /// Lawson flips of the triangulation `tris` (CCW triangles over `sites`, e.g. the Euclidean
 /// Delaunay triangulation) by the metric in-circle test, then the neighbour lists.

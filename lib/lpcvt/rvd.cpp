@@ -76,8 +76,8 @@ void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2&
 MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
                                const DelaunayGraph& dt) {
   int hint = -1;
-  auto metric = [&](const Vec2& a, const Vec2& b) -> Mat2 {
-    int c = bg.locate(0.5 * (a + b), hint);
+  auto metric = [&](const std::array<Vec2, 4>& q) -> Mat2 {
+    int c = bg.locate(0.25 * (q[0] + q[1] + q[2] + q[3]), hint);
     if (c < 0) return Mat2::Zero();  // a chord outside the domain: never flipped
     hint = c;
     return bg.cell(c).M;

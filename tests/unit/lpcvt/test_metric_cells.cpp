@@ -85,7 +85,7 @@ TEST_CASE("metric flips give the Delaunay triangulation of the mapped points (co
   std::vector<Vec2> x;
   for (int i = 0; i < 300; ++i) x.emplace_back(U(rng), U(rng));
   DelaunayGraph dt(x, true, false);
-  MetricGraph g = metric_delaunay(x, dt.triangles(), [&](const Vec2&, const Vec2&) { return M; });
+  MetricGraph g = metric_delaunay(x, dt.triangles(), [&](const std::array<Vec2, 4>&) { return M; });
   CHECK(g.flips > 0);
   CHECK_FALSE(g.capped);
   // every interior edge is locally Delaunay in the metric: the empty-circle test holds for
