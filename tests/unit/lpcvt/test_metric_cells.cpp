@@ -107,6 +107,39 @@ TEST_CASE("metric flips give the Delaunay triangulation of the mapped points (co
   CHECK(edges(dt.triangles()) != edges(mapped.triangles()));
 }
 
+TEST_CASE("metric flips terminate with a discontinuous metric (no flip cycles)") {
+  // a checkerboard of two strongly anisotropic metrics 85 degrees apart: Lawson's flips have no
+  // decreasing potential here; without the rule "an edge removed is never made again" the flips
+  // cycle until the cap (20 per site)
+  const Mat2 A = rotated_metric(0.2, 0.01, 0.3), B = rotated_metric(0.2, 0.01, 1.78);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(0, 1);
+  std::vector<Vec2> x;
+  for (int i = 0; i < 600; ++i) x.emplace_back(U(rng), U(rng));
+  DelaunayGraph dt(x, true, false);
+  auto metric = [&](const std::array<Vec2, 4>& q) {
+    const Vec2 c = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    const int i = static_cast<int>(std::floor(c.x() / 0.1)), j = static_cast<int>(std::floor(c.y() / 0.1));
+    return (i + j) % 2 == 0 ? A : B;
+  };
+  MetricGraph g = metric_delaunay(x, dt.triangles(), metric);
+  CHECK_FALSE(g.capped);
+  CHECK(g.flips > 100);
+  CHECK(g.flips < 6 * static_cast<long>(x.size()));
+  // still a triangulation: every triangle counter-clockwise, total area that of the hull
+  double area = 0;
+  for (const auto& t : g.tris) {
+    const double a = 0.5 * ((x[t[1]] - x[t[0]]).x() * (x[t[2]] - x[t[0]]).y() -
+                            (x[t[1]] - x[t[0]]).y() * (x[t[2]] - x[t[0]]).x());
+    CHECK(a > 0);
+    area += a;
+  }
+  double hull = 0;
+  for (const auto& t : dt.triangles())
+    hull += 0.5 * ((x[t[1]] - x[t[0]]).x() * (x[t[2]] - x[t[0]]).y() - (x[t[1]] - x[t[0]]).y() * (x[t[2]] - x[t[0]]).x());
+  CHECK(area == doctest::Approx(hull).epsilon(1e-12));
+}
+
 TEST_CASE("metric pieces tile the domain, and each lies nearest its own site in G_Q") {
   for (int kind = 0; kind < 3; ++kind) {
     Mesh m = kind == 0 ? saddle_square(5) : kind == 1 ? l_shape() : square_with_hole();

@@ -1,0 +1,58 @@
+#!/usr/bin/env python3
+"""The L_p-CVT loop against our BAMG loop and the best of the thesis's three methods (issue #14).
+
+usage: lpcvt-vs.py [RUNS]      (default RUNS = runs; needs RUNS/STUDY/pP-{lpcvt,bamg}/convergence.csv)
+
+For each (study, p) row: both loops' errors at the thesis's L_p-CVT DOF count (log-log
+interpolation along each curve, as the study reports do, no extrapolation), their ratio, and the
+ratio to the smallest error of the thesis's fixed-fraction, BAMG and L_p-CVT rows. Prints a
+markdown table and the two counts.
+"""
+import csv
+import json
+import math
+import os
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+RUNS = sys.argv[1] if len(sys.argv) > 1 else "runs"
+THESIS = json.load(open(os.path.join(ROOT, "docs", "data", "thesis-tables.json")))["cases"]
+STUDIES = [("sshock-feature", "sshock-feature", "l2_error"),
+           ("bl-feature", "boundary-layer-feature", "l2_error"),
+           ("sshock-goal", "sshock-goal", "functional_error"),
+           ("bl-goal", "boundary-layer-goal", "functional_error")]
+
+
+def curve(path, col):
+    rows = list(csv.DictReader(open(path)))
+    return [(float(r["dofs"]), abs(float(r[col]))) for r in rows if r.get(col) not in ("", None)]
+
+
+def at(c, dofs):
+    for (d0, e0), (d1, e1) in zip(c, c[1:]):
+        if d0 <= dofs <= d1 and e0 > 0 and e1 > 0:
+            t = math.log(dofs / d0) / math.log(d1 / d0)
+            return math.exp(math.log(e0) + t * (math.log(e1) - math.log(e0)))
+    return float("nan")
+
+
+print("| study | p | thesis L_p-CVT DOFs | our L_p-CVT | our BAMG | L_p-CVT / BAMG | thesis best (method) | L_p-CVT / thesis best |")
+print("|---|---|---|---|---|---|---|---|")
+n = below_bamg = below_thesis = 0
+for study, key, col in STUDIES:
+    for p in (1, 2, 3):
+        rows = [r for r in THESIS[key]["rows"] if r["p"] == p]
+        best = min(rows, key=lambda r: r["error"])
+        dofs = next(r["dofs"] for r in rows if r["method"] == "lpcvt")
+        try:
+            el = at(curve(os.path.join(RUNS, study, f"p{p}-lpcvt", "convergence.csv"), col), dofs)
+            eb = at(curve(os.path.join(RUNS, study, f"p{p}-bamg", "convergence.csv"), col), dofs)
+        except OSError as e:
+            print(f"| {study} | {p} | missing run: {e.filename} | | | | | |")
+            continue
+        n += 1
+        below_bamg += el <= eb
+        below_thesis += el < best["error"]
+        print(f"| {study} | {p} | {dofs:.3g} | {el:.3g} | {eb:.3g} | {el / eb:.2f} | {best['error']:.3g} ({best['method']}) | {el / best['error']:.2f} |")
+print()
+print(f"L_p-CVT at or below our BAMG loop: {below_bamg} of {n}; below the thesis's best: {below_thesis} of {n}")
