@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
       auto ph = tool.phase("snap");
       const SnapStats ss = snap_to_geometry(q, *g, in);
       tool.report()["snap"] = {{"boundary_nodes", ss.boundary_nodes}, {"moved", ss.moved}, {"max_move", ss.max_move},
-                               {"max_distance", ss.max_distance}};
+                               {"max_distance", ss.max_distance}, {"max_interior_move", ss.max_interior_move}};
     }
     auto& rep = tool.report();
     rep["frame_cells"] = st.frame_cells;

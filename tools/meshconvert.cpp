@@ -60,11 +60,12 @@ int main(int argc, char** argv) {
       const CurveStats st = curve_boundary_cells(m, *g, std::max(order, 1), in);
       tool.option("geometry", geometry);
       tool.report()["snap"] = {{"boundary_nodes", st.snap.boundary_nodes}, {"moved", st.snap.moved},
-                               {"max_move", st.snap.max_move}, {"max_distance", st.snap.max_distance}};
+                               {"max_move", st.snap.max_move}, {"max_distance", st.snap.max_distance},
+                               {"max_interior_move", st.snap.max_interior_move}};
       tool.report()["curving"] = {{"order", st.order}, {"boundary_edges", st.boundary_edges},
                                   {"max_sagitta", st.max_sagitta}, {"max_blend", st.max_blend},
                                   {"max_distance", st.max_distance},
-                                  {"min_scaled_jacobian", st.min_scaled_jacobian}};
+                                  {"min_scaled_jacobian", st.min_scaled_jacobian}, {"blend", st.blend}};
       validate_mesh(m, in, opt);
       tool.log("boundary on " + geometry + ": " + std::to_string(st.snap.moved) + " of " +
                std::to_string(st.snap.boundary_nodes) + " boundary nodes moved (at most " + std::to_string(st.snap.max_move) +

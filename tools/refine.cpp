@@ -81,9 +81,9 @@ int main(int argc, char** argv) {
     }
     if (g) {
       auto ph = tool.phase("snap");
-      const SnapStats ss = snap_to_geometry(r, *g, in);
+      const SnapStats ss = snap_to_geometry(r, *g, in, s.hanging_after == 0);
       tool.report()["snap"] = {{"boundary_nodes", ss.boundary_nodes}, {"moved", ss.moved}, {"max_move", ss.max_move},
-                               {"max_distance", ss.max_distance}};
+                               {"max_distance", ss.max_distance}, {"max_interior_move", ss.max_interior_move}};
     }
     auto& rep = tool.report();
     rep["cells_before"] = s.cells_before;

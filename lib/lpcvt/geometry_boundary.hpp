@@ -1,11 +1,16 @@
 #pragma once
 // Boundary points of the L_p-CVT on the TRUE curves of a geometry (docs/curved.md, "Geometry"),
 // the curved counterpart of mesh_boundary (boundary_points.hpp; thesis eqs. 4.2-4.7):
-// along each curve c(t) of g, dL(t) = |M_eff(c(t)) c'(t)|_2 is sampled at K equispaced
+// along each curve c(t) of g, dL(t) = max(|M_eff c'(t)|_2, |c'| sqrt(kappa |M_eff n| / 2)) is
+// sampled at K equispaced
 // parameters (K = max(512, 16 n)), the metric length L = integral dL dt by the trapezoidal rule,
 // n = max(1, round(L)) segments (closed curves at least 3), and the points are c(t_i) with
 // L(t_i) = i L / n (dL linear between samples, eq. 4.7) — exactly on the curve, equidistributed
-// in the frame's metric. Curve ends (the geometry's vertices) are shared sites.
+// in the frame's metric. The second term (kappa the curvature, n the unit normal) bounds the
+// sagitta kappa h^2 / 8 of a segment by a quarter of the metric's normal spacing 1 / |M_eff n|:
+// recombine's split puts a node at each segment's midpoint, which snapping to the curve moves
+// by the sagitta (mesh/snap.hpp), and the thin cells of a boundary layer must not fold then.
+// Curve ends (the geometry's vertices) are shared sites.
 //
 // Where the curve leaves the background mesh (a convex boundary of a polygonal frame mesh) the
 // metric of the nearest background boundary cell is used, if the curve is within a quarter of

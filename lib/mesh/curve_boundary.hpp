@@ -4,7 +4,9 @@
 //  * every boundary edge's q-1 interior control points ON the true curve, at equispaced
 //    parameters between its end nodes' parameters (the end nodes are snapped first:
 //    mesh/snap.hpp), so the edge interpolates the curve at q+1 points;
-//  * every other control point (and every interior vertex) moved by a smooth blend of the
+//  * the interior control points of the boundary cells by the transfinite (Coons) blend of the
+//    cell's own edge displacements (nothing else moves); when that folds a cell, instead every
+//    other control point (and every interior vertex) moved by a smooth blend of the
 //    boundary edges' displacements delta_e (curve point minus chord point):
 //        D(x) = sum_e phi(d_e(x) / rho_e) delta_e(s_e(x)) / max(1, sum_e phi(d_e(x) / rho_e)),
 //    d_e the distance of x to the chord e, s_e in [0, 1] the projection's parameter, rho_e the
@@ -32,6 +34,7 @@ struct CurveStats {
   double max_distance = 0;        ///< boundary control points' largest distance to their curve
   double min_scaled_jacobian = 1; ///< of the result (1 for q = 1)
   int worst_cell = -1;
+  std::string blend;              ///< "transfinite" (cells' own) or "smooth" (across cells)
 };
 
 /// Snaps m's boundary nodes to g (snap_to_geometry) and, for q >= 2, gives m geometric order q as

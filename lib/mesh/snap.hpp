@@ -14,6 +14,7 @@ struct SnapStats {
   int moved = 0;            ///< nodes that moved (by more than 0)
   double max_move = 0;      ///< largest distance moved
   double max_distance = 0;  ///< after snapping: largest distance of a boundary node to its curve
+  double max_interior_move = 0;  ///< largest move of an interior node (the blend)
 };
 
 /// The geometry's curves of each boundary group of m (by name). Throws InputError(path, ...)
@@ -21,10 +22,19 @@ struct SnapStats {
 std::vector<std::vector<int>> group_curves(const Mesh& m, const BoundaryGeometry& g, const std::string& path);
 
 /// Moves every node of m's boundary edges to the closest point of the curves named like its
-/// group (a node of two groups: of either, the closer). Straight-sided meshes only. Throws
+/// group (a node of two groups: of either, the closer), and, with `move_interior` when moving the
+/// boundary alone would invert a cell, every interior node x by the blend of the boundary moves d_v:
+///     D(x) = sum_v phi(|x - x_v| / rho_v) d_v / max(1, sum_v phi(|x - x_v| / rho_v)),
+/// rho_v the shortest boundary edge at v, phi Wendland's C2 function (curve_boundary.hpp): a
+/// thin boundary-layer cell above a node that moves by more than its height moves along
+/// instead of folding. (Off for meshes with hanging nodes, which must stay on their edges.)
+/// Straight-sided meshes only. Throws
 /// InputError(path, ...) when a group has no curve in g or a node lies farther from its curves
 /// than half its shortest boundary edge (the mesh is not a mesh of g's domain), NumericalError
 /// when a moved node inverts a cell (named).
-SnapStats snap_to_geometry(Mesh& m, const BoundaryGeometry& g, const std::string& path);
+SnapStats snap_to_geometry(Mesh& m, const BoundaryGeometry& g, const std::string& path, bool move_interior = true);
+
+/// Wendland's C2 function (1 - r)^4 (4 r + 1) on [0, 1), 0 beyond: the blends' weight.
+double wendland_c2(double r);
 
 }  // namespace quadapt
