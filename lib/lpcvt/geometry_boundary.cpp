@@ -15,17 +15,16 @@ namespace {
 /// the metric of the nearest boundary cell (within a quarter of its boundary
 /// edge).
 class MetricLookup {
-public:
+ public:
   explicit MetricLookup(const Background &bg) : bg_(bg) {
     for (const auto &e : free_edges(bg.mesh(), false)) {
       Edge f;
       f.a = bg.mesh().nodes[e[0]];
       f.b = bg.mesh().nodes[e[1]];
       const Vec2 d = f.b - f.a;
-      const Vec2 inward(-d.y(), d.x()); // the cell is on the left
+      const Vec2 inward(-d.y(), d.x());  // the cell is on the left
       f.cell = bg.locate(0.5 * (f.a + f.b) + 1e-6 * inward, -1);
-      if (f.cell >= 0)
-        edges_.push_back(f);
+      if (f.cell >= 0) edges_.push_back(f);
     }
   }
   /// M_eff at y; false when y is too far outside (distance in `dist`).
@@ -52,13 +51,12 @@ public:
       }
     }
     dist = best;
-    if (!be || best > 0.25 * (be->b - be->a).norm())
-      return false;
+    if (!be || best > 0.25 * (be->b - be->a).norm()) return false;
     M = bg_.metric(be->cell, proj);
     return true;
   }
 
-private:
+ private:
   struct Edge {
     Vec2 a, b;
     int cell = -1;
@@ -73,11 +71,9 @@ double turn_deg(const Vec2 &a, const Vec2 &b) {
   return std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI;
 }
 
-} // namespace
+}  // namespace
 
-BoundaryPoints geometry_boundary(const Background &bg,
-                                 const BoundaryGeometry &g,
-                                 std::vector<BoundaryGroup> &groups) {
+BoundaryPoints geometry_boundary(const Background &bg, const BoundaryGeometry &g, std::vector<BoundaryGroup> &groups) {
   groups.clear();
   std::map<std::string, int> group_of;
   for (const auto &name : g.names()) {
@@ -89,22 +85,18 @@ BoundaryPoints geometry_boundary(const Background &bg,
   std::map<int, int> vertex_site;
   auto end_site = [&](int v) {
     auto it = vertex_site.find(v);
-    if (it != vertex_site.end())
-      return it->second;
+    if (it != vertex_site.end()) return it->second;
     out.points.push_back(g.vertices()[v]);
     return vertex_site[v] = static_cast<int>(out.points.size()) - 1;
   };
   for (int k = 0; k < g.num_curves(); ++k) {
     const GeometryCurve &cv = g.curves()[k];
-    const std::string what =
-        "curve '" + cv.name + "' (" + std::to_string(cv.tag) + ")";
-    auto sample = [&](int K, std::vector<double> &t, std::vector<double> &dl,
-                      std::vector<Vec2> &tan) {
+    const std::string what = "curve '" + cv.name + "' (" + std::to_string(cv.tag) + ")";
+    auto sample = [&](int K, std::vector<double> &t, std::vector<double> &dl, std::vector<Vec2> &tan) {
       t.resize(K + 1);
       dl.resize(K + 1);
       tan.resize(K + 1);
-      for (int i = 0; i <= K; ++i)
-        t[i] = cv.t0 + (cv.t1 - cv.t0) * i / K;
+      for (int i = 0; i <= K; ++i) t[i] = cv.t0 + (cv.t1 - cv.t0) * i / K;
       const std::vector<Vec2> x = g.points(k, t);
       for (int i = 0; i <= K; ++i) {
         tan[i] = g.derivative(k, t[i]);
@@ -112,31 +104,23 @@ BoundaryPoints geometry_boundary(const Background &bg,
         Mat2 M;
         double dist = 0;
         if (!lookup.metric(x[i], M, dist))
-          throw InputError(g.source(),
-                           what + " passes " + point_text(x[i]) + ", " +
-                               std::to_string(dist) +
-                               " outside the frame's domain: the frame is not "
-                               "a mesh of this geometry");
+          throw InputError(g.source(), what + " passes " + point_text(x[i]) + ", " + std::to_string(dist) +
+                                           " outside the frame's domain: the frame is not "
+                                           "a mesh of this geometry");
         // sagitta bound: a segment of length h on curvature kappa deviates
         // kappa h^2 / 8 from the curve; at most a quarter of the metric's
         // normal spacing 1 / |M n|
         const double sp = tan[i].norm();
-        const double kappa =
-            sp > 0 ? std::abs(tan[i].x() * acc.y() - tan[i].y() * acc.x()) /
-                         (sp * sp * sp)
-                   : 0.0;
-        const Vec2 n =
-            sp > 0 ? Vec2(-tan[i].y() / sp, tan[i].x() / sp) : Vec2(0, 0);
-        dl[i] = std::max((M * tan[i]).norm(),
-                         sp * std::sqrt(0.5 * kappa * (M * n).norm()));
+        const double kappa = sp > 0 ? std::abs(tan[i].x() * acc.y() - tan[i].y() * acc.x()) / (sp * sp * sp) : 0.0;
+        const Vec2 n = sp > 0 ? Vec2(-tan[i].y() / sp, tan[i].x() / sp) : Vec2(0, 0);
+        dl[i] = std::max((M * tan[i]).norm(), sp * std::sqrt(0.5 * kappa * (M * n).norm()));
       }
     };
     std::vector<double> t, dl;
     std::vector<Vec2> tan;
     auto length = [&](std::vector<double> &C) {
       C.assign(t.size(), 0.0);
-      for (size_t i = 1; i < t.size(); ++i)
-        C[i] = C[i - 1] + 0.5 * (dl[i] + dl[i - 1]) * (t[i] - t[i - 1]);
+      for (size_t i = 1; i < t.size(); ++i) C[i] = C[i - 1] + 0.5 * (dl[i] + dl[i - 1]) * (t[i] - t[i - 1]);
       return C.back();
     };
     std::vector<double> C;
@@ -155,13 +139,11 @@ BoundaryPoints geometry_boundary(const Background &bg,
     size_t iv = 1;
     for (int i = 1; i < n; ++i) {
       const double r = i * L / n;
-      while (iv + 1 < C.size() && C[iv] < r)
-        ++iv;
+      while (iv + 1 < C.size() && C[iv] < r) ++iv;
       const double h = t[iv] - t[iv - 1], a = dl[iv - 1], rr = r - C[iv - 1];
       const double alpha = h > 0 ? (dl[iv] - dl[iv - 1]) / h : 0.0;
       const double disc = std::sqrt(std::max(0.0, a * a + 2 * alpha * rr));
-      const double u =
-          a + disc > 0 ? std::clamp(2 * rr / (a + disc), 0.0, h) : 0.0;
+      const double u = a + disc > 0 ? std::clamp(2 * rr / (a + disc), 0.0, h) : 0.0;
       tp.push_back(t[iv - 1] + u);
     }
     tp.push_back(cv.t1);
@@ -170,19 +152,14 @@ BoundaryPoints geometry_boundary(const Background &bg,
     for (int i = 0; i < n; ++i) {
       double turn = 0;
       while (j + 1 < t.size() && t[j + 1] <= tp[i + 1]) {
-        if (t[j] >= tp[i])
-          turn += turn_deg(tan[j], tan[j + 1]);
+        if (t[j] >= tp[i]) turn += turn_deg(tan[j], tan[j + 1]);
         ++j;
       }
       if (turn > kMaxSegmentTurnDeg)
-        throw InputError(
-            g.source(),
-            what + " is not resolved by the frame: its metric length " +
-                std::to_string(L) + " gives " + std::to_string(n) +
-                " segments, one of which turns by " +
-                std::to_string(static_cast<int>(std::lround(turn))) +
-                " degrees (at most " +
-                std::to_string(static_cast<int>(kMaxSegmentTurnDeg)) + ")");
+        throw InputError(g.source(), what + " is not resolved by the frame: its metric length " + std::to_string(L) +
+                                         " gives " + std::to_string(n) + " segments, one of which turns by " +
+                                         std::to_string(static_cast<int>(std::lround(turn))) + " degrees (at most " +
+                                         std::to_string(static_cast<int>(kMaxSegmentTurnDeg)) + ")");
     }
     const std::vector<double> inner(tp.begin() + 1, tp.end() - 1);
     const std::vector<Vec2> x = g.points(k, inner);
@@ -206,4 +183,4 @@ BoundaryPoints geometry_boundary(const Background &bg,
   return out;
 }
 
-} // namespace quadapt::lpcvt
+}  // namespace quadapt::lpcvt

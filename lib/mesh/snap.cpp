@@ -10,49 +10,38 @@
 
 namespace quadapt {
 
-std::vector<std::vector<int>> group_curves(const Mesh &m,
-                                           const BoundaryGeometry &g,
-                                           const std::string &path) {
+std::vector<std::vector<int>> group_curves(const Mesh &m, const BoundaryGeometry &g, const std::string &path) {
   std::vector<std::vector<int>> r(m.groups.size());
   std::vector<char> used(m.groups.size(), 0);
-  for (const auto &e : m.boundary)
-    used.at(e.group) = 1;
+  for (const auto &e : m.boundary) used.at(e.group) = 1;
   for (size_t k = 0; k < m.groups.size(); ++k) {
     r[k] = g.curves_named(m.groups[k].name);
     if (r[k].empty() && used[k]) {
       std::string names;
-      for (const auto &n : g.names())
-        names += (names.empty() ? "" : ", ") + n;
-      throw InputError(path, "boundary '" + m.groups[k].name +
-                                 "' is not a physical curve of " + g.source() +
+      for (const auto &n : g.names()) names += (names.empty() ? "" : ", ") + n;
+      throw InputError(path, "boundary '" + m.groups[k].name + "' is not a physical curve of " + g.source() +
                                  " (its curves: " + names + ")");
     }
   }
   return r;
 }
 
-double wendland_c2(double r) {
-  return r >= 1 ? 0.0 : std::pow(1 - r, 4) * (4 * r + 1);
-}
+double wendland_c2(double r) { return r >= 1 ? 0.0 : std::pow(1 - r, 4) * (4 * r + 1); }
 
 namespace {
 
-SnapStats snap_once(Mesh &m, const BoundaryGeometry &g, const std::string &path,
-                    bool move_interior) {
-  if (m.is_curved())
-    throw Error("snap_to_geometry: the mesh is curved");
-  if (m.boundary.empty())
-    complete_boundary(m);
+SnapStats snap_once(Mesh &m, const BoundaryGeometry &g, const std::string &path, bool move_interior) {
+  if (m.is_curved()) throw Error("snap_to_geometry: the mesh is curved");
+  if (m.boundary.empty()) complete_boundary(m);
   const auto curves = group_curves(m, g, path);
-  std::map<int, std::vector<int>> node_curves; // node -> candidate curves
-  std::map<int, double> node_edge; // node -> shortest boundary edge at it
+  std::map<int, std::vector<int>> node_curves;  // node -> candidate curves
+  std::map<int, double> node_edge;              // node -> shortest boundary edge at it
   for (const auto &e : m.boundary) {
     const double len = (m.nodes[e.v[0]] - m.nodes[e.v[1]]).norm();
     for (int v : e.v) {
       auto &cs = node_curves[v];
       for (int k : curves[e.group])
-        if (std::find(cs.begin(), cs.end(), k) == cs.end())
-          cs.push_back(k);
+        if (std::find(cs.begin(), cs.end(), k) == cs.end()) cs.push_back(k);
       auto it = node_edge.find(v);
       node_edge[v] = it == node_edge.end() ? len : std::min(it->second, len);
     }
@@ -65,13 +54,10 @@ SnapStats snap_once(Mesh &m, const BoundaryGeometry &g, const std::string &path,
     Vec2 p = g.closest_point(cs, m.nodes[v], &k);
     const double d = (p - m.nodes[v]).norm();
     if (d > 0.5 * node_edge[v])
-      throw InputError(path, "boundary node " + std::to_string(v) + " at " +
-                                 point_text(m.nodes[v]) + " is " +
-                                 std::to_string(d) + " from curve '" +
-                                 g.curves()[k].name + "' of " + g.source() +
+      throw InputError(path, "boundary node " + std::to_string(v) + " at " + point_text(m.nodes[v]) + " is " +
+                                 std::to_string(d) + " from curve '" + g.curves()[k].name + "' of " + g.source() +
                                  ": the mesh is not a mesh of that geometry");
-    if (d > 0)
-      ++s.moved;
+    if (d > 0) ++s.moved;
     s.max_move = std::max(s.max_move, d);
     m.nodes[v] = p;
   }
@@ -82,23 +68,19 @@ SnapStats snap_once(Mesh &m, const BoundaryGeometry &g, const std::string &path,
     };
     std::vector<Move> moves;
     for (auto &[v, cs] : node_curves)
-      if (m.nodes[v] != before[v])
-        moves.push_back({before[v], m.nodes[v] - before[v], node_edge[v]});
+      if (m.nodes[v] != before[v]) moves.push_back({before[v], m.nodes[v] - before[v], node_edge[v]});
     for (int v = 0; v < m.num_nodes() && !moves.empty(); ++v) {
-      if (node_curves.count(v))
-        continue;
+      if (node_curves.count(v)) continue;
       Vec2 D(0, 0);
       double W = 0;
       for (const auto &mv : moves) {
         const Vec2 r = before[v] - mv.x;
-        if (std::abs(r.x()) >= mv.rho || std::abs(r.y()) >= mv.rho)
-          continue;
+        if (std::abs(r.x()) >= mv.rho || std::abs(r.y()) >= mv.rho) continue;
         const double w = wendland_c2(r.norm() / mv.rho);
         D += w * mv.d;
         W += w;
       }
-      if (W > 1)
-        D /= W;
+      if (W > 1) D /= W;
       m.nodes[v] = before[v] + D;
       s.max_interior_move = std::max(s.max_interior_move, D.norm());
     }
@@ -110,35 +92,29 @@ SnapStats snap_once(Mesh &m, const BoundaryGeometry &g, const std::string &path,
   // a moved node must not invert a cell: every corner that turned left (det J >
   // 0 of the bilinear map there) still does
   auto turn = [&](const std::vector<Vec2> &x, const Cell &cell, int i) {
-    const Vec2 &a = x[cell.v[(i + cell.nv - 1) % cell.nv]], &b = x[cell.v[i]],
-               &d = x[cell.v[(i + 1) % cell.nv]];
+    const Vec2 &a = x[cell.v[(i + cell.nv - 1) % cell.nv]], &b = x[cell.v[i]], &d = x[cell.v[(i + 1) % cell.nv]];
     const Vec2 u = b - a, w = d - b;
     return u.x() * w.y() - u.y() * w.x();
   };
   for (int c = 0; c < m.num_cells(); ++c) {
     const Cell &cell = m.cells[c];
     bool touched = false;
-    for (int i = 0; i < cell.nv; ++i)
-      touched |= m.nodes[cell.v[i]] != before[cell.v[i]];
-    if (!touched)
-      continue;
+    for (int i = 0; i < cell.nv; ++i) touched |= m.nodes[cell.v[i]] != before[cell.v[i]];
+    if (!touched) continue;
     for (int i = 0; i < cell.nv; ++i)
       if (turn(before, cell, i) > 0 && turn(m.nodes, cell, i) <= 0)
-        throw NumericalError(
-            path + ": snapping the boundary to " + g.source() +
-            " inverts cell " + std::to_string(c) + " at " +
-            point_text(before[cell.v[i]]) +
-            " (the cell is thinner than the curve's deviation from its chord)");
+        throw NumericalError(path + ": snapping the boundary to " + g.source() + " inverts cell " + std::to_string(c) +
+                             " at " + point_text(before[cell.v[i]]) +
+                             " (the cell is thinner than the curve's deviation from its chord)");
   }
   return s;
 }
 
-} // namespace
+}  // namespace
 
-SnapStats snap_to_geometry(Mesh &m, const BoundaryGeometry &g,
-                           const std::string &path, bool move_interior) {
-  if (move_interior) { // the interior stays put when that folds nothing, else
-                       // the blend
+SnapStats snap_to_geometry(Mesh &m, const BoundaryGeometry &g, const std::string &path, bool move_interior) {
+  if (move_interior) {  // the interior stays put when that folds nothing, else
+                        // the blend
     Mesh copy = m;
     try {
       SnapStats s = snap_once(copy, g, path, false);
@@ -150,4 +126,4 @@ SnapStats snap_to_geometry(Mesh &m, const BoundaryGeometry &g,
   return snap_once(m, g, path, move_interior);
 }
 
-} // namespace quadapt
+}  // namespace quadapt
