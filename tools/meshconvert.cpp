@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
             "--order 1 without --geometry drops IN's curved geometry (the vertex view, fields kept).");
   std::string in, out, require = "any", geometry;
   int order = 0;
+  bool fallback = false;
   tool.app().add_option("IN", in, "Input mesh (.msh)")->required()->check(CLI::ExistingFile);
   tool.app().add_option("-o,--output", out, "Output mesh: .msh (MSH 4.1 ASCII) or .vtu (VTK XML, ParaView)")->required();
   tool.app()
@@ -35,6 +36,8 @@ int main(int argc, char** argv) {
   tool.app().add_option("--order", order, "Geometric order of the output: 2..4 curve the boundary cells (with --geometry); "
                         "1 keeps straight-sided cells (without --geometry: drops IN's curved geometry)")
       ->check(CLI::Range(1, 4));
+  tool.app().add_flag("--straight-fallback", fallback, "With --order >= 2: a cell that folds when curved keeps its "
+                      "boundary edges straight (end nodes on the curve; reported as straight_edges) instead of the error");
   return tool.run(argc, argv, [&] {
     tool.input(in);
     if (!geometry.empty()) tool.input(geometry);
@@ -57,7 +60,7 @@ int main(int argc, char** argv) {
     if (g) {
       auto ph = tool.phase("curve");
       if (m.is_curved()) throw InputError(in, "the mesh is curved already; --geometry curves straight-sided meshes");
-      const CurveStats st = curve_boundary_cells(m, *g, std::max(order, 1), in);
+      const CurveStats st = curve_boundary_cells(m, *g, std::max(order, 1), in, fallback);
       tool.option("geometry", geometry);
       tool.report()["snap"] = {{"boundary_nodes", st.snap.boundary_nodes}, {"moved", st.snap.moved},
                                {"max_move", st.snap.max_move}, {"max_distance", st.snap.max_distance},
@@ -65,7 +68,8 @@ int main(int argc, char** argv) {
       tool.report()["curving"] = {{"order", st.order}, {"boundary_edges", st.boundary_edges},
                                   {"max_sagitta", st.max_sagitta}, {"max_blend", st.max_blend},
                                   {"max_distance", st.max_distance},
-                                  {"min_scaled_jacobian", st.min_scaled_jacobian}, {"blend", st.blend}};
+                                  {"min_scaled_jacobian", st.min_scaled_jacobian}, {"blend", st.blend},
+                                  {"straight_edges", st.straight_edges}};
       validate_mesh(m, in, opt);
       tool.log("boundary on " + geometry + ": " + std::to_string(st.snap.moved) + " of " +
                std::to_string(st.snap.boundary_nodes) + " boundary nodes moved (at most " + std::to_string(st.snap.max_move) +

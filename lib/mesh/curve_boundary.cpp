@@ -181,18 +181,30 @@ CurveStats curve_boundary_cells(Mesh &m, const BoundaryGeometry &g, int q, const
     r.curved.points = std::move(P);
     return r;
   };
-  // the cells' own transfinite blend when it folds nothing, else the smooth
-  // blend across cells
+  // the cells' own transfinite blend when it folds nothing, else the smooth blend across cells;
+  // with `fallback`, a cell that still folds gets its boundary edges straight, until none folds
   Mesh best;
   ScaledJacobian sj;
-  for (bool global : {false, true}) {
-    Mesh r = build(global);
-    const ScaledJacobian s2 = min_scaled_jacobian(r);
-    if (global && s2.min <= sj.min) continue;
-    best = std::move(r);
-    sj = s2;
-    st.blend = global ? "smooth" : "transfinite";
-    if (sj.min > 0) break;
+  for (int attempt = 0;; ++attempt) {
+    sj = ScaledJacobian{};
+    for (bool global : {false, true}) {
+      Mesh r = build(global);
+      const ScaledJacobian s2 = min_scaled_jacobian(r);
+      if (global && s2.min <= sj.min) continue;
+      best = std::move(r);
+      sj = s2;
+      st.blend = global ? "smooth" : "transfinite";
+      if (sj.min > 0) break;
+    }
+    if (sj.min > 0 || !fallback || attempt >= 1000) break;
+    const Cell& bad = m.cells[sj.cell];
+    int erased = 0;
+    for (int e = 0; e < 4; ++e) {
+      const int A = bad.v[e], B = bad.v[(e + 1) % 4];
+      erased += static_cast<int>(on_curve.erase(directed_edge_key(A, B)) + on_curve.erase(directed_edge_key(B, A)));
+    }
+    if (erased == 0) break;  // folds without a curved edge: nothing to fall back to
+    st.straight_edges += erased;
   }
   m = std::move(best);
   st.min_scaled_jacobian = sj.min;

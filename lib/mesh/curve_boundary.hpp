@@ -34,11 +34,16 @@ struct CurveStats {
   double max_distance = 0;        ///< boundary control points' largest distance to their curve
   double min_scaled_jacobian = 1; ///< of the result (1 for q = 1)
   int worst_cell = -1;
+  int straight_edges = 0;         ///< boundary edges left straight (fallback)
   std::string blend;              ///< "transfinite" (cells' own) or "smooth" (across cells)
 };
 
 /// Snaps m's boundary nodes to g (snap_to_geometry) and, for q >= 2, gives m geometric order q as
-/// above. m: straight-sided, all quads, conforming. q in 1..kMaxGeometricOrder.
-CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const std::string& path);
+/// above. m: straight-sided, all quads, conforming. q in 1..kMaxGeometricOrder. With `fallback`,
+/// a cell that folds either way gets its boundary edges straight (their end nodes stay on the
+/// curve; counted in straight_edges) instead of the error — a sliver cell whose angle at a
+/// boundary node is smaller than the arc's turn cannot take a curved edge.
+CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const std::string& path,
+                                bool fallback = false);
 
 }  // namespace quadapt

@@ -221,7 +221,7 @@ if [ -n "$GEOMETRY" ]; then
     run_tool "$1" snap "$1/next-straight.msh" "$1/next-flat.msh" "$GEOMETRY" -- \
       meshconvert "$1/next-flat.msh" --geometry "$GEOMETRY" --order 1 -o "$1/next-straight.msh"
     run_tool "$1" curve "$1/next-curved.msh" "$1/next-straight.msh" -- \
-      meshconvert "$1/next-straight.msh" --geometry "$GEOMETRY" --order "$ORDER" -o "$1/next-curved.msh"
+      meshconvert "$1/next-straight.msh" --geometry "$GEOMETRY" --order "$ORDER" --straight-fallback -o "$1/next-curved.msh"
     mkdir -p "$3"
     if [ ! -s "$3/mesh.msh" ] || [ "$1/next-curved.msh" -nt "$3/mesh.msh" ]; then
       link_into "$1/next-straight.msh" "$3/straight.msh"
