@@ -12,22 +12,22 @@ namespace quadapt {
 
 namespace {
 
-const char *const kModel = "quadapt-geometry";
+const char* const kModel = "quadapt-geometry";
 
 class GmshGeometry : public BoundaryGeometry {
  public:
-  explicit GmshGeometry(const std::string &path);
+  explicit GmshGeometry(const std::string& path);
   Vec2 point(int k, double t) const override { return eval(k, t, 0); }
   Vec2 derivative(int k, double t) const override { return eval(k, t, 1); }
   Vec2 second_derivative(int k, double t) const override { return eval(k, t, 2); }
-  std::vector<Vec2> points(int k, const std::vector<double> &t) const override;
+  std::vector<Vec2> points(int k, const std::vector<double>& t) const override;
 
  private:
   GmshSession session_;
   Vec2 eval(int k, double t, int order) const;
 };
 
-GmshGeometry::GmshGeometry(const std::string &path) {
+GmshGeometry::GmshGeometry(const std::string& path) {
   source_ = path;
   std::map<int, std::string> curve_name;     // entity tag -> physical name
   std::vector<std::pair<int, Vec2>> points;  // point entities
@@ -38,7 +38,7 @@ GmshGeometry::GmshGeometry(const std::string &path) {
       gmsh::merge(path);
       gmsh::vectorpair groups;
       gmsh::model::getPhysicalGroups(groups, 1);
-      for (const auto &[dim, ptag] : groups) {
+      for (const auto& [dim, ptag] : groups) {
         std::string name;
         gmsh::model::getPhysicalName(1, ptag, name);
         if (name.empty()) {
@@ -59,13 +59,13 @@ GmshGeometry::GmshGeometry(const std::string &path) {
       }
       gmsh::vectorpair pts;
       gmsh::model::getEntities(pts, 0);
-      for (const auto &[dim, tag] : pts) {
+      for (const auto& [dim, tag] : pts) {
         std::vector<double> xyz, none;
         gmsh::model::getValue(0, tag, none, xyz);
         if (xyz.size() == 3) points.emplace_back(tag, Vec2(xyz[0], xyz[1]));
       }
     });
-  } catch (const ExternalError &e) {
+  } catch (const ExternalError& e) {
     throw InputError(path, std::string("Gmsh cannot open it (") + e.what() + ")");
   }
   if (!problem.empty()) throw InputError(path, problem);
@@ -74,9 +74,9 @@ GmshGeometry::GmshGeometry(const std::string &path) {
                      "no named physical curves (the boundary names of "
                      "the mesh come from them)");
   double size = 1;
-  for (auto &[tag, p] : points) size = std::max(size, p.norm());
+  for (auto& [tag, p] : points) size = std::max(size, p.norm());
   gmsh_call("curves of " + path, [&] {
-    for (const auto &[tag, name] : curve_name) {
+    for (const auto& [tag, name] : curve_name) {
       GeometryCurve c;
       c.name = name;
       c.tag = tag;
@@ -92,13 +92,13 @@ GmshGeometry::GmshGeometry(const std::string &path) {
   std::map<int, int> vertex_of;  // point tag -> vertex index
   const double tol = 1e-9 * size;
   for (int k = 0; k < num_curves(); ++k) {
-    auto &c = curves_[k];
+    auto& c = curves_[k];
     std::vector<Vec2> e = this->points(k, {c.t0, c.t1});
     if ((e[0] - e[1]).norm() <= tol) continue;  // closed
     for (int s = 0; s < 2; ++s) {
       int best = -1;
       double bd = tol;
-      for (auto &[tag, p] : points)
+      for (auto& [tag, p] : points)
         if ((p - e[s]).norm() <= bd) {
           bd = (p - e[s]).norm();
           best = tag;
@@ -111,7 +111,7 @@ GmshGeometry::GmshGeometry(const std::string &path) {
       }
       auto it = vertex_of.find(best);
       if (it == vertex_of.end()) {
-        for (auto &[tag, p] : points)
+        for (auto& [tag, p] : points)
           if (tag == best) vertices_.push_back(p);
         it = vertex_of.emplace(best, static_cast<int>(vertices_.size()) - 1).first;
       }
@@ -138,7 +138,7 @@ Vec2 GmshGeometry::eval(int k, double t, int order) const {
   return Vec2(v[0], v[1]);
 }
 
-std::vector<Vec2> GmshGeometry::points(int k, const std::vector<double> &t) const {
+std::vector<Vec2> GmshGeometry::points(int k, const std::vector<double>& t) const {
   std::vector<double> v;
   gmsh_call("curve " + std::to_string(curves_[k].tag), [&] {
     gmsh::model::setCurrent(kModel);
@@ -157,7 +157,7 @@ std::vector<Vec2> GmshGeometry::points(int k, const std::vector<double> &t) cons
 
 }  // namespace
 
-std::unique_ptr<BoundaryGeometry> open_geometry(const std::string &path) {
+std::unique_ptr<BoundaryGeometry> open_geometry(const std::string& path) {
   return std::make_unique<GmshGeometry>(path);
 }
 

@@ -16,8 +16,8 @@ namespace {
 /// edge).
 class MetricLookup {
  public:
-  explicit MetricLookup(const Background &bg) : bg_(bg) {
-    for (const auto &e : free_edges(bg.mesh(), false)) {
+  explicit MetricLookup(const Background& bg) : bg_(bg) {
+    for (const auto& e : free_edges(bg.mesh(), false)) {
       Edge f;
       f.a = bg.mesh().nodes[e[0]];
       f.b = bg.mesh().nodes[e[1]];
@@ -28,7 +28,7 @@ class MetricLookup {
     }
   }
   /// M_eff at y; false when y is too far outside (distance in `dist`).
-  bool metric(const Vec2 &y, Mat2 &M, double &dist) {
+  bool metric(const Vec2& y, Mat2& M, double& dist) {
     int c = bg_.locate(y, hint_);
     dist = 0;
     if (c >= 0) {
@@ -37,9 +37,9 @@ class MetricLookup {
       return true;
     }
     double best = 1e300;
-    const Edge *be = nullptr;
+    const Edge* be = nullptr;
     Vec2 proj;
-    for (const auto &e : edges_) {
+    for (const auto& e : edges_) {
       const Vec2 d = e.b - e.a;
       const double s = std::clamp((y - e.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
       const Vec2 p = e.a + s * d;
@@ -61,22 +61,22 @@ class MetricLookup {
     Vec2 a, b;
     int cell = -1;
   };
-  const Background &bg_;
+  const Background& bg_;
   std::vector<Edge> edges_;
   int hint_ = -1;
 };
 
-double turn_deg(const Vec2 &a, const Vec2 &b) {
+double turn_deg(const Vec2& a, const Vec2& b) {
   const double c = a.dot(b) / (a.norm() * b.norm());
   return std::acos(std::clamp(c, -1.0, 1.0)) * 180 / M_PI;
 }
 
 }  // namespace
 
-BoundaryPoints geometry_boundary(const Background &bg, const BoundaryGeometry &g, std::vector<BoundaryGroup> &groups) {
+BoundaryPoints geometry_boundary(const Background& bg, const BoundaryGeometry& g, std::vector<BoundaryGroup>& groups) {
   groups.clear();
   std::map<std::string, int> group_of;
-  for (const auto &name : g.names()) {
+  for (const auto& name : g.names()) {
     group_of[name] = static_cast<int>(groups.size());
     groups.push_back({static_cast<int>(groups.size()) + 1, name});
   }
@@ -90,9 +90,9 @@ BoundaryPoints geometry_boundary(const Background &bg, const BoundaryGeometry &g
     return vertex_site[v] = static_cast<int>(out.points.size()) - 1;
   };
   for (int k = 0; k < g.num_curves(); ++k) {
-    const GeometryCurve &cv = g.curves()[k];
+    const GeometryCurve& cv = g.curves()[k];
     const std::string what = "curve '" + cv.name + "' (" + std::to_string(cv.tag) + ")";
-    auto sample = [&](int K, std::vector<double> &t, std::vector<double> &dl, std::vector<Vec2> &tan) {
+    auto sample = [&](int K, std::vector<double>& t, std::vector<double>& dl, std::vector<Vec2>& tan) {
       t.resize(K + 1);
       dl.resize(K + 1);
       tan.resize(K + 1);
@@ -118,7 +118,7 @@ BoundaryPoints geometry_boundary(const Background &bg, const BoundaryGeometry &g
     };
     std::vector<double> t, dl;
     std::vector<Vec2> tan;
-    auto length = [&](std::vector<double> &C) {
+    auto length = [&](std::vector<double>& C) {
       C.assign(t.size(), 0.0);
       for (size_t i = 1; i < t.size(); ++i) C[i] = C[i - 1] + 0.5 * (dl[i] + dl[i - 1]) * (t[i] - t[i - 1]);
       return C.back();
@@ -170,7 +170,7 @@ BoundaryPoints geometry_boundary(const Background &bg, const BoundaryGeometry &g
     } else {
       sites.push_back(end_site(cv.ends[0]));
     }
-    for (const Vec2 &p : x) {
+    for (const Vec2& p : x) {
       out.points.push_back(p);
       sites.push_back(static_cast<int>(out.points.size()) - 1);
     }

@@ -21,7 +21,7 @@ struct CurvedEdge {
 
 }  // namespace
 
-CurveStats curve_boundary_cells(Mesh &m, const BoundaryGeometry &g, int q, const std::string &path) {
+CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const std::string& path, bool fallback) {
   if (q < 1 || q > kMaxGeometricOrder)
     throw InputError(
         "", "geometric order " + std::to_string(q) + " not supported (1.." + std::to_string(kMaxGeometricOrder) + ")");
@@ -37,11 +37,11 @@ CurveStats curve_boundary_cells(Mesh &m, const BoundaryGeometry &g, int q, const
   // boundary edges: control points on the curve
   std::map<std::uint64_t, std::vector<Vec2>> on_curve;  // directed edge key (v0 -> v1) -> q+1 points
   std::vector<CurvedEdge> edges;
-  for (const auto &e : m.boundary) {
+  for (const auto& e : m.boundary) {
     const Vec2 a = m.nodes[e.v[0]], b = m.nodes[e.v[1]];
     int k = -1;
     g.closest_point(curves[e.group], 0.5 * (a + b), &k);
-    const auto &cv = g.curves()[k];
+    const auto& cv = g.curves()[k];
     double ta = g.closest_parameter(k, a), tb = g.closest_parameter(k, b);
     const double len = (b - a).norm();
     if ((g.point(k, ta) - a).norm() > 1e-9 * len || (g.point(k, tb) - b).norm() > 1e-9 * len)
@@ -84,10 +84,10 @@ CurveStats curve_boundary_cells(Mesh &m, const BoundaryGeometry &g, int q, const
   }
 
   std::vector<double> l(q + 1), dl(q + 1);
-  auto blend = [&](const Vec2 &x) {
+  auto blend = [&](const Vec2& x) {
     Vec2 D(0, 0);
     double W = 0;
-    for (const auto &e : edges) {
+    for (const auto& e : edges) {
       if ((x.array() < e.lo.array()).any() || (x.array() > e.hi.array()).any()) continue;
       const Vec2 ab = e.b - e.a;
       const double s = std::clamp((x - e.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
@@ -103,7 +103,7 @@ CurveStats curve_boundary_cells(Mesh &m, const BoundaryGeometry &g, int q, const
   };
 
   std::vector<char> on_boundary(m.nodes.size(), 0);
-  for (const auto &e : m.boundary) on_boundary[e.v[0]] = on_boundary[e.v[1]] = 1;
+  for (const auto& e : m.boundary) on_boundary[e.v[0]] = on_boundary[e.v[1]] = 1;
   auto build = [&](bool global) {
     // interior vertices first (the corners of the control grids)
     std::vector<Vec2> nodes = m.nodes;
@@ -117,8 +117,8 @@ CurveStats curve_boundary_cells(Mesh &m, const BoundaryGeometry &g, int q, const
     const int n1 = q + 1;
     std::vector<Vec2> P(static_cast<size_t>(m.num_cells()) * n1 * n1);
     for (int c = 0; c < m.num_cells(); ++c) {
-      const Cell &cell = m.cells[c];
-      Vec2 *X = P.data() + static_cast<size_t>(c) * n1 * n1;
+      const Cell& cell = m.cells[c];
+      Vec2* X = P.data() + static_cast<size_t>(c) * n1 * n1;
       Vec2 V[4];
       for (int k = 0; k < 4; ++k) V[k] = m.nodes[cell.v[k]];  // straight positions
       // interior: bilinear map of the straight cell, then the blend

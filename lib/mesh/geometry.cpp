@@ -11,18 +11,18 @@ namespace quadapt {
 
 std::vector<std::string> BoundaryGeometry::names() const {
   std::set<std::string> s;
-  for (const auto &c : curves_) s.insert(c.name);
+  for (const auto& c : curves_) s.insert(c.name);
   return {s.begin(), s.end()};
 }
 
-std::vector<int> BoundaryGeometry::curves_named(const std::string &name) const {
+std::vector<int> BoundaryGeometry::curves_named(const std::string& name) const {
   std::vector<int> r;
   for (int k = 0; k < num_curves(); ++k)
     if (curves_[k].name == name) r.push_back(k);
   return r;
 }
 
-std::vector<Vec2> BoundaryGeometry::points(int k, const std::vector<double> &t) const {
+std::vector<Vec2> BoundaryGeometry::points(int k, const std::vector<double>& t) const {
   std::vector<Vec2> r;
   r.reserve(t.size());
   for (double s : t) r.push_back(point(k, s));
@@ -32,16 +32,16 @@ std::vector<Vec2> BoundaryGeometry::points(int k, const std::vector<double> &t) 
 void BoundaryGeometry::finish() {
   samples_.clear();
   for (int k = 0; k < num_curves(); ++k) {
-    const auto &c = curves_[k];
+    const auto& c = curves_[k];
     std::vector<double> t(kSamples + 1);
     for (int i = 0; i <= kSamples; ++i) t[i] = c.t0 + (c.t1 - c.t0) * i / kSamples;
     samples_.push_back(points(k, t));
   }
 }
 
-double BoundaryGeometry::closest_parameter(int k, const Vec2 &x) const {
-  const auto &c = curves_[k];
-  const auto &S = samples_.at(k);
+double BoundaryGeometry::closest_parameter(int k, const Vec2& x) const {
+  const auto& c = curves_[k];
+  const auto& S = samples_.at(k);
   int best = 0;
   double bd = std::numeric_limits<double>::infinity();
   for (int i = 0; i <= kSamples; ++i) {
@@ -81,14 +81,14 @@ double BoundaryGeometry::closest_parameter(int k, const Vec2 &x) const {
   return t;
 }
 
-Vec2 BoundaryGeometry::closest_point(const std::vector<int> &ks, const Vec2 &x, int *curve, double *t) const {
+Vec2 BoundaryGeometry::closest_point(const std::vector<int>& ks, const Vec2& x, int* curve, double* t) const {
   double bd = std::numeric_limits<double>::infinity();
   Vec2 best = x;
   for (int k : ks) {
     double s = closest_parameter(k, x);
     Vec2 p = point(k, s);
     // end points: the vertices themselves (exact corners)
-    const auto &c = curves_[k];
+    const auto& c = curves_[k];
     if (!c.closed()) {
       if (s == c.t0) p = vertices_[c.ends[0]];
       if (s == c.t1) p = vertices_[c.ends[1]];
@@ -107,16 +107,16 @@ Vec2 BoundaryGeometry::closest_point(const std::vector<int> &ks, const Vec2 &x, 
 FunctionGeometry::FunctionGeometry(std::string source, std::vector<Curve> curves) : f_(std::move(curves)) {
   source_ = std::move(source);
   double size = 0;
-  for (const auto &f : f_) size = std::max({size, f.c(f.t0).norm(), f.c(f.t1).norm(), 1.0});
+  for (const auto& f : f_) size = std::max({size, f.c(f.t0).norm(), f.c(f.t1).norm(), 1.0});
   const double tol = 1e-12 * size;
-  auto vertex = [&](const Vec2 &p) {
+  auto vertex = [&](const Vec2& p) {
     for (int i = 0; i < static_cast<int>(vertices_.size()); ++i)
       if ((vertices_[i] - p).norm() <= tol) return i;
     vertices_.push_back(p);
     return static_cast<int>(vertices_.size()) - 1;
   };
   int tag = 0;
-  for (const auto &f : f_) {
+  for (const auto& f : f_) {
     GeometryCurve c;
     c.name = f.name;
     c.tag = ++tag;
@@ -129,7 +129,7 @@ FunctionGeometry::FunctionGeometry(std::string source, std::vector<Curve> curves
   finish();
 }
 
-FunctionGeometry::Curve FunctionGeometry::circle(const std::string &name, const Vec2 &o, double r) {
+FunctionGeometry::Curve FunctionGeometry::circle(const std::string& name, const Vec2& o, double r) {
   Curve c;
   c.name = name;
   c.t0 = 0;
@@ -140,7 +140,7 @@ FunctionGeometry::Curve FunctionGeometry::circle(const std::string &name, const 
   return c;
 }
 
-FunctionGeometry::Curve FunctionGeometry::segment(const std::string &name, const Vec2 &a, const Vec2 &b) {
+FunctionGeometry::Curve FunctionGeometry::segment(const std::string& name, const Vec2& a, const Vec2& b) {
   Curve c;
   c.name = name;
   c.c = [a, b](double t) { return Vec2(a + t * (b - a)); };

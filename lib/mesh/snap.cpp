@@ -10,15 +10,15 @@
 
 namespace quadapt {
 
-std::vector<std::vector<int>> group_curves(const Mesh &m, const BoundaryGeometry &g, const std::string &path) {
+std::vector<std::vector<int>> group_curves(const Mesh& m, const BoundaryGeometry& g, const std::string& path) {
   std::vector<std::vector<int>> r(m.groups.size());
   std::vector<char> used(m.groups.size(), 0);
-  for (const auto &e : m.boundary) used.at(e.group) = 1;
+  for (const auto& e : m.boundary) used.at(e.group) = 1;
   for (size_t k = 0; k < m.groups.size(); ++k) {
     r[k] = g.curves_named(m.groups[k].name);
     if (r[k].empty() && used[k]) {
       std::string names;
-      for (const auto &n : g.names()) names += (names.empty() ? "" : ", ") + n;
+      for (const auto& n : g.names()) names += (names.empty() ? "" : ", ") + n;
       throw InputError(path, "boundary '" + m.groups[k].name + "' is not a physical curve of " + g.source() +
                                  " (its curves: " + names + ")");
     }
@@ -30,16 +30,16 @@ double wendland_c2(double r) { return r >= 1 ? 0.0 : std::pow(1 - r, 4) * (4 * r
 
 namespace {
 
-SnapStats snap_once(Mesh &m, const BoundaryGeometry &g, const std::string &path, bool move_interior) {
+SnapStats snap_once(Mesh& m, const BoundaryGeometry& g, const std::string& path, bool move_interior) {
   if (m.is_curved()) throw Error("snap_to_geometry: the mesh is curved");
   if (m.boundary.empty()) complete_boundary(m);
   const auto curves = group_curves(m, g, path);
   std::map<int, std::vector<int>> node_curves;  // node -> candidate curves
   std::map<int, double> node_edge;              // node -> shortest boundary edge at it
-  for (const auto &e : m.boundary) {
+  for (const auto& e : m.boundary) {
     const double len = (m.nodes[e.v[0]] - m.nodes[e.v[1]]).norm();
     for (int v : e.v) {
-      auto &cs = node_curves[v];
+      auto& cs = node_curves[v];
       for (int k : curves[e.group])
         if (std::find(cs.begin(), cs.end(), k) == cs.end()) cs.push_back(k);
       auto it = node_edge.find(v);
@@ -48,7 +48,7 @@ SnapStats snap_once(Mesh &m, const BoundaryGeometry &g, const std::string &path,
   }
   SnapStats s;
   const std::vector<Vec2> before = m.nodes;
-  for (auto &[v, cs] : node_curves) {
+  for (auto& [v, cs] : node_curves) {
     ++s.boundary_nodes;
     int k = -1;
     Vec2 p = g.closest_point(cs, m.nodes[v], &k);
@@ -67,13 +67,13 @@ SnapStats snap_once(Mesh &m, const BoundaryGeometry &g, const std::string &path,
       double rho;
     };
     std::vector<Move> moves;
-    for (auto &[v, cs] : node_curves)
+    for (auto& [v, cs] : node_curves)
       if (m.nodes[v] != before[v]) moves.push_back({before[v], m.nodes[v] - before[v], node_edge[v]});
     for (int v = 0; v < m.num_nodes() && !moves.empty(); ++v) {
       if (node_curves.count(v)) continue;
       Vec2 D(0, 0);
       double W = 0;
-      for (const auto &mv : moves) {
+      for (const auto& mv : moves) {
         const Vec2 r = before[v] - mv.x;
         if (std::abs(r.x()) >= mv.rho || std::abs(r.y()) >= mv.rho) continue;
         const double w = wendland_c2(r.norm() / mv.rho);
@@ -85,19 +85,19 @@ SnapStats snap_once(Mesh &m, const BoundaryGeometry &g, const std::string &path,
       s.max_interior_move = std::max(s.max_interior_move, D.norm());
     }
   }
-  for (auto &[v, cs] : node_curves) {
+  for (auto& [v, cs] : node_curves) {
     Vec2 p = g.closest_point(cs, m.nodes[v]);
     s.max_distance = std::max(s.max_distance, (p - m.nodes[v]).norm());
   }
   // a moved node must not invert a cell: every corner that turned left (det J >
   // 0 of the bilinear map there) still does
-  auto turn = [&](const std::vector<Vec2> &x, const Cell &cell, int i) {
+  auto turn = [&](const std::vector<Vec2>& x, const Cell& cell, int i) {
     const Vec2 &a = x[cell.v[(i + cell.nv - 1) % cell.nv]], &b = x[cell.v[i]], &d = x[cell.v[(i + 1) % cell.nv]];
     const Vec2 u = b - a, w = d - b;
     return u.x() * w.y() - u.y() * w.x();
   };
   for (int c = 0; c < m.num_cells(); ++c) {
-    const Cell &cell = m.cells[c];
+    const Cell& cell = m.cells[c];
     bool touched = false;
     for (int i = 0; i < cell.nv; ++i) touched |= m.nodes[cell.v[i]] != before[cell.v[i]];
     if (!touched) continue;
@@ -112,7 +112,7 @@ SnapStats snap_once(Mesh &m, const BoundaryGeometry &g, const std::string &path,
 
 }  // namespace
 
-SnapStats snap_to_geometry(Mesh &m, const BoundaryGeometry &g, const std::string &path, bool move_interior) {
+SnapStats snap_to_geometry(Mesh& m, const BoundaryGeometry& g, const std::string& path, bool move_interior) {
   if (move_interior) {  // the interior stays put when that folds nothing, else
                         // the blend
     Mesh copy = m;
@@ -120,7 +120,7 @@ SnapStats snap_to_geometry(Mesh &m, const BoundaryGeometry &g, const std::string
       SnapStats s = snap_once(copy, g, path, false);
       m = std::move(copy);
       return s;
-    } catch (const NumericalError &) {
+    } catch (const NumericalError&) {
     }
   }
   return snap_once(m, g, path, move_interior);
