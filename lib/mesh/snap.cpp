@@ -30,7 +30,9 @@ double wendland_c2(double r) { return r >= 1 ? 0.0 : std::pow(1 - r, 4) * (4 * r
 
 namespace {
 
-SnapStats snap_once(Mesh& m, const BoundaryGeometry& g, const std::string& path, bool move_interior) {
+enum class Interior { Stay, Parent, Blend };
+
+SnapStats snap_once(Mesh& m, const BoundaryGeometry& g, const std::string& path, Interior interior) {
   if (m.is_curved()) throw Error("snap_to_geometry: the mesh is curved");
   if (m.boundary.empty()) complete_boundary(m);
   const auto curves = group_curves(m, g, path);
@@ -61,7 +63,36 @@ SnapStats snap_once(Mesh& m, const BoundaryGeometry& g, const std::string& path,
     s.max_move = std::max(s.max_move, d);
     m.nodes[v] = p;
   }
-  if (move_interior) {
+  if (interior == Interior::Parent) {
+    // a split parent's centre C follows its Coons map: the children of a quad (triangle) parent
+    // around a mid-edge node M share M and C, and C (valence 4, resp. 3) moves by 1/2 (2/3) of M's move
+    std::vector<std::vector<int>> cells_of(m.nodes.size());
+    for (int c = 0; c < m.num_cells(); ++c)
+      for (int i = 0; i < m.cells[c].nv; ++i) cells_of[m.cells[c].v[i]].push_back(c);
+    std::vector<Vec2> D(m.nodes.size(), Vec2(0, 0));
+    for (auto& [v, cs] : node_curves) {
+      const Vec2 d = m.nodes[v] - before[v];
+      if (d.isZero(0) || cells_of[v].size() != 2) continue;
+      const Cell &a = m.cells[cells_of[v][0]], &b = m.cells[cells_of[v][1]];
+      int centre = -1, shared = 0;
+      for (int i = 0; i < a.nv; ++i)
+        for (int j = 0; j < b.nv; ++j)
+          if (a.v[i] == b.v[j] && a.v[i] != v && !node_curves.count(a.v[i])) {
+            centre = a.v[i];
+            ++shared;
+          }
+      if (shared != 1) continue;
+      const size_t val = cells_of[centre].size();
+      if (val == 4) D[centre] += 0.5 * d;
+      else if (val == 3) D[centre] += (2.0 / 3.0) * d;
+    }
+    for (size_t v = 0; v < D.size(); ++v)
+      if (!D[v].isZero(0)) {
+        m.nodes[v] = before[v] + D[v];
+        s.max_interior_move = std::max(s.max_interior_move, D[v].norm());
+      }
+  }
+  if (interior == Interior::Blend) {
     struct Move {
       Vec2 x, d;
       double rho;
@@ -113,17 +144,17 @@ SnapStats snap_once(Mesh& m, const BoundaryGeometry& g, const std::string& path,
 }  // namespace
 
 SnapStats snap_to_geometry(Mesh& m, const BoundaryGeometry& g, const std::string& path, bool move_interior) {
-  if (move_interior) {  // the interior stays put when that folds nothing, else
-                        // the blend
-    Mesh copy = m;
-    try {
-      SnapStats s = snap_once(copy, g, path, false);
-      m = std::move(copy);
-      return s;
-    } catch (const NumericalError&) {
+  if (move_interior)  // split parents' centres follow; else only the boundary moves; else the blend
+    for (Interior mode : {Interior::Parent, Interior::Stay}) {
+      Mesh copy = m;
+      try {
+        SnapStats s = snap_once(copy, g, path, mode);
+        m = std::move(copy);
+        return s;
+      } catch (const NumericalError&) {
+      }
     }
-  }
-  return snap_once(m, g, path, move_interior);
+  return snap_once(m, g, path, move_interior ? Interior::Blend : Interior::Stay);
 }
 
 }  // namespace quadapt

@@ -22,8 +22,12 @@ struct SnapStats {
 std::vector<std::vector<int>> group_curves(const Mesh& m, const BoundaryGeometry& g, const std::string& path);
 
 /// Moves every node of m's boundary edges to the closest point of the curves named like its
-/// group (a node of two groups: of either, the closer), and, with `move_interior` when moving the
-/// boundary alone would invert a cell, every interior node x by the blend of the boundary moves d_v:
+/// group (a node of two groups: of either, the closer). With `move_interior`, the interior
+/// follows by the first of these that inverts no cell: (1) the centre C of every split parent
+/// (a mid-edge boundary node M whose two cells share one interior vertex C of valence 4, or 3
+/// for a triangle split into 3 quads) moves by 1/2 (2/3) of M's move — the parent's
+/// transfinite map at its centre; (2) nothing; (3) every interior node x by the blend of the
+/// boundary moves d_v:
 ///     D(x) = sum_v phi(|x - x_v| / rho_v) d_v / max(1, sum_v phi(|x - x_v| / rho_v)),
 /// rho_v the shortest boundary edge at v, phi Wendland's C2 function (curve_boundary.hpp): a
 /// thin boundary-layer cell above a node that moves by more than its height moves along

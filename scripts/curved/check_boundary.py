@@ -5,7 +5,8 @@
 
 Reads quadapt's MSH 4.1 ASCII (and Gmsh's), takes every node of the line elements (of any order:
 the high-order nodes of curved edges too) of the physical curve GROUP and prints, as JSON, the
-number of nodes and the largest | |x - c| - R |. With --max: exit 1 when that exceeds the bound.
+number of nodes, the largest | |x - c| - R | and, with --max, the number of nodes farther than
+that ("off"); exit 1 when more than --allow-off (default 0) nodes are.
 """
 import argparse
 import json
@@ -66,6 +67,7 @@ def main():
     ap.add_argument("--group", required=True)
     ap.add_argument("--circle", nargs=3, type=float, required=True, metavar=("CX", "CY", "R"))
     ap.add_argument("--max", type=float)
+    ap.add_argument("--allow-off", type=int, default=0)
     a = ap.parse_args()
     names, curve_phys, nodes, lines_of = read(a.mesh)
     if a.group not in names:
@@ -76,9 +78,12 @@ def main():
         if tag in phys:
             ids.update(lines_of.get(ent, []))
     cx, cy, r = a.circle
-    d = max((abs(math.hypot(nodes[v][0] - cx, nodes[v][1] - cy) - r) for v in ids), default=0.0)
-    print(json.dumps({"nodes": len(ids), "max_distance": d}))
-    if a.max is not None and (not ids or d > a.max):
+    dist = [abs(math.hypot(nodes[v][0] - cx, nodes[v][1] - cy) - r) for v in ids]
+    out = {"nodes": len(ids), "max_distance": max(dist, default=0.0)}
+    if a.max is not None:
+        out["off"] = sum(d > a.max for d in dist)
+    print(json.dumps(out))
+    if a.max is not None and (not ids or out["off"] > a.allow_off):
         sys.exit(1)
 
 

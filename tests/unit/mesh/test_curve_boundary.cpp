@@ -51,7 +51,7 @@ TEST_CASE("geometry: closest point on a circle by Newton, to rounding") {
   CHECK(worst < 1e-14);
 }
 
-TEST_CASE("snap: chord midpoints of a refined disk go onto the circle; bilinear interior unchanged") {
+TEST_CASE("snap: chord midpoints of a refined disk go onto the circle; each split parent's centre follows by half") {
   const FunctionGeometry g = circle_geometry();
   RefineOptions opt;
   Mesh m = refine_mesh(curved_disk(2, 1), opt);
@@ -64,9 +64,18 @@ TEST_CASE("snap: chord midpoints of a refined disk go onto the circle; bilinear 
   CHECK(s.max_move == doctest::Approx(1 - std::cos(M_PI / 8)).epsilon(1e-6));
   CHECK(s.max_distance < 1e-15);
   for (const auto& e : m.boundary) CHECK(std::abs(m.nodes[e.v[0]].norm() - 1) < 1e-15);
-  CHECK(s.max_interior_move == 0);  // nothing folds: the interior stays
-  for (int v = 0; v < m.num_nodes(); ++v)
-    if (m0.nodes[v].norm() < 0.9) CHECK(m.nodes[v] == m0.nodes[v]);
+  // the parent's Coons map at its centre: half of the mid-edge node's move; nothing else moves
+  const double half = 0.5 * (1 - std::cos(M_PI / 8));
+  CHECK(s.max_interior_move == doctest::Approx(half).epsilon(1e-6));
+  int centres = 0;
+  for (int v = 0; v < m.num_nodes(); ++v) {
+    if (m.nodes[v].norm() > 1 - 1e-15) continue;  // boundary
+    const double moved = (m.nodes[v] - m0.nodes[v]).norm();
+    if (moved < 1e-12) continue;  // old boundary nodes move by rounding
+    ++centres;
+    CHECK(moved == doctest::Approx(half).epsilon(1e-6));
+  }
+  CHECK(centres == 8);
 }
 
 TEST_CASE("curve_boundary_cells: disk at q = 2, 3, 4: boundary nodes on the circle to 1e-12, area of the polynomial region to 1e-12") {
