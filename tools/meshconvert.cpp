@@ -19,8 +19,9 @@ int main(int argc, char** argv) {
             "quadrilaterals of degree p, cell fields as cell data, Vinv as a 3x3 tensor). Nothing is written when IN "
             "is invalid. Formats: docs/file-formats.md. With --geometry G (a CAD file Gmsh opens; its named physical curves are "
             "IN's boundary names) the boundary nodes are moved onto the true curves and, with --order q >= 2, the cells "
-            "get geometric order q: boundary edges' control points on the curve, the others by a smooth blend of those "
-            "displacements (docs/curved.md); the report gives the minimum scaled Jacobian, and a folded cell is refused. "
+            "get geometric order q: boundary edges' control points on the curve, the others by the cells' transfinite "
+            "blend of those displacements, else a smooth blend across cells (docs/curved.md); the report gives the minimum "
+            "scaled Jacobian, and a folded cell is refused (--straight-fallback: it keeps straight boundary edges). "
             "--order 1 without --geometry drops IN's curved geometry (the vertex view, fields kept).");
   std::string in, out, require = "any", geometry;
   int order = 0;
