@@ -68,6 +68,20 @@ for q in 1 2 3; do
     || fail "meshconvert --order $q report"
 done
 meshplot -q "$T/c3.msh" -o "$T/c3.svg" --window -0.7,0.7,-0.7,0.7
+# the .vtu of a curved mesh: Lagrange quadrilaterals (type 70) of degree 3 on the map, so no point
+# lies inside the cylinder (the straight export's chord points would)
+meshconvert -q "$T/c3.msh" -o "$T/c3.vtu"
+python3 - "$T/c3.vtu" <<'PY'
+import math, re, sys
+t = open(sys.argv[1]).read()
+pts = re.search(r'<Points>\s*<DataArray[^>]*>(.*?)</DataArray>', t, re.S).group(1).split()
+xy = [(float(pts[i]), float(pts[i + 1])) for i in range(0, len(pts), 3)]
+types = re.search(r'Name="types"[^>]*>(.*?)</DataArray>', t, re.S).group(1).split()
+assert set(types) == {"70"}, set(types)
+assert len(xy) == 16 * len(types), (len(xy), len(types))
+r = min(math.hypot(x, y) for x, y in xy)
+assert r > 0.5 - 1e-12, r
+PY
 
 # --- a 2-step adaptive L_p-CVT loop on the true geometry (p = 2)
 make -s -f "$S/Makefile.cases" loop CASE="$C" MESH="$M" P=2 METHOD=lpcvt STEPS=2 \
