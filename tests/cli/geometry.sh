@@ -59,6 +59,11 @@ expect_refusal "--order 3 needs --geometry" "$T/o.msh" -- meshconvert "$M" --ord
 lpcvt -q "$T/frame.msh" --geometry "$G" -o "$T/tri.msh"
 on_circle "$T/tri.msh"
 python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['options']['geometry'].endswith('cylinder.geo'), r['options']" "$T/tri.json"
+if command -v "${QUADAPT_FFBAMG:-ffbamg}" >/dev/null; then  # BAMG meshes the polygon; the nodes are projected
+  bamgquad -q "$T/frame.msh" --geometry "$G" -o "$T/bq.msh"
+  on_circle "$T/bq.msh"
+  meshconvert -q "$T/bq.msh" --require quads -o "$T/bq2.msh"  # valid
+fi
 refine -q "$M" --uniform --geometry "$G" -o "$T/r.msh"
 on_circle "$T/r.msh"
 for q in 1 2 3; do
