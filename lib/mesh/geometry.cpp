@@ -61,9 +61,13 @@ double BoundaryGeometry::closest_parameter(int k, const Vec2& x) const {
     lo = t - dt;
     hi = t + dt;
   }
-  // Newton on f(t) = (c(t) - x) . c'(t), safeguarded to the bracket [lo, hi].
+  // Newton on f(t) = (c(t) - x) . c'(t), safeguarded to the bracket [lo, hi]; a closed
+  // curve's bracket may cross its seam: evaluate there at t -+ period
+  const double period = c.t1 - c.t0;
+  auto wrap = [&](double u) { return !c.closed() ? u : u < c.t0 ? u + period : u > c.t1 ? u - period : u; };
   for (int it = 0; it < 50; ++it) {
-    Vec2 r = point(k, t) - x, d1 = derivative(k, t), d2 = second_derivative(k, t);
+    const double tw = wrap(t);
+    Vec2 r = point(k, tw) - x, d1 = derivative(k, tw), d2 = second_derivative(k, tw);
     double f = r.dot(d1), fp = d1.squaredNorm() + r.dot(d2);
     double tn = fp > 0 ? t - f / fp : t - f / std::max(d1.squaredNorm(), 1e-300);
     tn = std::clamp(tn, lo, hi);

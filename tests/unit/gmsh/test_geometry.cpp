@@ -12,6 +12,10 @@
 
 using namespace quadapt;
 
+namespace {
+Vec2 c0_point(const BoundaryGeometry& g, int k) { return g.point(k, g.curves()[k].t0); }
+}  // namespace
+
 TEST_CASE("open_geometry: the cylinder's named curves, its circle exact, closest points by Newton") {
   const auto g = open_geometry(std::string(QUADAPT_SOURCE_DIR) + "/examples/geometry/cylinder.geo");
   CHECK(g->names() == std::vector<std::string>{"cylinder", "inlet", "outlet", "walls"});
@@ -33,6 +37,12 @@ TEST_CASE("open_geometry: the cylinder's named curves, its circle exact, closest
   CHECK(dworst < 1e-8);
   const Vec2 p = g->closest_point(cyl, Vec2(1, 1));
   CHECK((p - Vec2(0.5 / std::sqrt(2.0), 0.5 / std::sqrt(2.0))).norm() < 1e-14);
+  // on both sides of the closed curve's seam (its parameter's ends)
+  const Vec2 s0 = c0_point(*g, cyl[0]);
+  for (double a : {-1e-3, -1e-9, 0.0, 1e-9, 1e-3}) {
+    const Vec2 x = s0.normalized() * std::cos(a) * 0.8 + Vec2(-s0.y(), s0.x()).normalized() * std::sin(a) * 0.8;
+    CHECK((g->closest_point(cyl, x) - 0.5 * x.normalized()).norm() < 1e-14);
+  }
   // the channel's corners are shared vertices of inlet and walls
   const Vec2 q = g->closest_point(g->curves_named("inlet"), Vec2(-3, -3));
   CHECK(q == Vec2(-1.5, -1.5));
