@@ -113,7 +113,7 @@ BoundaryPoints geometry_boundary(const Background& bg, const BoundaryGeometry& g
         const double sp = tan[i].norm();
         const double kappa = sp > 0 ? std::abs(tan[i].x() * acc.y() - tan[i].y() * acc.x()) / (sp * sp * sp) : 0.0;
         const Vec2 n = sp > 0 ? Vec2(-tan[i].y() / sp, tan[i].x() / sp) : Vec2(0, 0);
-        dl[i] = std::max((M * tan[i]).norm(), sp * std::sqrt(0.5 * kappa * (M * n).norm()));
+        dl[i] = std::max((M * tan[i]).norm(), sp * std::sqrt(kSagittaFactor * kappa * (M * n).norm() / 8));
       }
     };
     std::vector<double> t, dl;

@@ -45,7 +45,7 @@ TEST_CASE("geometry_boundary: a constant metric puts round(2 pi / h) equally spa
 
 TEST_CASE("geometry_boundary: a frame too coarse for the curve, and a geometry outside the frame, are refused") {
   std::vector<BoundaryGroup> groups;
-  CHECK_THROWS_WITH_AS(geometry_boundary(disk_background(1.5), kCircle, groups),
+  CHECK_THROWS_WITH_AS(geometry_boundary(disk_background(3.0), kCircle, groups),
                        doctest::Contains("circle.geo: curve 'wall' (1) is not resolved by the frame"), InputError);
   const FunctionGeometry big("big.geo", {FunctionGeometry::circle("wall", Vec2(0, 0), 1.5)});
   CHECK_THROWS_WITH_AS(geometry_boundary(disk_background(0.1), big, groups),
