@@ -108,7 +108,7 @@ BoundaryPoints geometry_boundary(const Background& bg, const BoundaryGeometry& g
                                            " outside the frame's domain: the frame is not "
                                            "a mesh of this geometry");
         // sagitta bound: a segment of length h on curvature kappa deviates
-        // kappa h^2 / 8 from the curve; at most a quarter of the metric's
+        // kappa h^2 / 8 from the curve; at most 1 / kSagittaFactor of the metric's
         // normal spacing 1 / |M n|
         const double sp = tan[i].norm();
         const double kappa = sp > 0 ? std::abs(tan[i].x() * acc.y() - tan[i].y() * acc.x()) / (sp * sp * sp) : 0.0;
