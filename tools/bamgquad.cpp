@@ -7,7 +7,9 @@
 #include "cli/parse_errors.hpp"
 #include "cli/tool.hpp"
 #include "core/format.hpp"
+#include "gmsh/geometry.hpp"
 #include "io/msh.hpp"
+#include "mesh/snap.hpp"
 #include "mesh/validate.hpp"
 #include "quad/report.hpp"
 
@@ -27,7 +29,7 @@ int main(int argc, char** argv) {
             "curves. The cell count is calibrated: when a run misses int |det M|/4 by more than 3%, the "
             "metric is rescaled by target/cells and the path runs again (--runs). Report: target complexity, achieved cells and their ratio, BAMG triangles, "
             "Blossom quads/triangles, quality (angles, scaled Jacobian) and measured stretch.");
-  std::string in, out;
+  std::string in, out, geometry;
   BamgQuadOptions opt;
   bool arithmetic = false, pairing = false, no_split_edges = false;
   auto& app = tool.app();
@@ -63,11 +65,20 @@ int main(int argc, char** argv) {
                  "Relative miss of the target cell count accepted without another run")
       ->capture_default_str()
       ->check(NonNegativeValue);
+  app.add_option("--geometry", geometry, "Project the output's boundary nodes onto the true curves of this geometry "
+                 "(.geo, .brep, .step; named physical curves = the frame's boundary names; docs/curved.md)")
+      ->check(CLI::ExistingFile);
   app.add_flag("--pairing", pairing, "Blossom: use only the matching (see recombine --help)");
 
   return tool.run(argc, argv, [&] {
     tool.input(in);
+    if (!geometry.empty()) tool.input(geometry);
     tool.output(out);
+    std::unique_ptr<BoundaryGeometry> g;
+    if (!geometry.empty()) {
+      g = open_geometry(geometry);
+      tool.option("geometry", geometry);
+    }
     opt.log_euclidean = !arithmetic;
     opt.ffbamg.split_boundary_edges = !no_split_edges;
     opt.recombine.blossom.gmsh_cleanup = !pairing;
@@ -83,12 +94,19 @@ int main(int argc, char** argv) {
       auto ph = tool.phase("read");
       frame = read_frame(in, convention == "auto" ? std::nullopt : std::optional(parse_size_convention(convention)));
       tool.option("convention", to_string(frame.source));
+      if (g) group_curves(frame.mesh, *g, in);  // every boundary name is a curve of the geometry
     }
     BamgQuadStats st;
     Mesh q;
     {
       auto ph = tool.phase("mesh");
       q = bamg_quad(frame, opt, &st, in);
+    }
+    if (g) {
+      auto ph = tool.phase("snap");
+      const SnapStats ss = snap_to_geometry(q, *g, in);
+      tool.report()["snap"] = {{"boundary_nodes", ss.boundary_nodes}, {"moved", ss.moved}, {"max_move", ss.max_move},
+                               {"max_distance", ss.max_distance}, {"max_interior_move", ss.max_interior_move}};
     }
     auto& rep = tool.report();
     rep["frame_cells"] = st.frame_cells;

@@ -9,6 +9,7 @@
 #include "core/atomic_file.hpp"
 #include "dg/degree.hpp"
 #include "io/msh.hpp"
+#include "gmsh/geometry.hpp"
 #include "lpcvt/run.hpp"
 
 int main(int argc, char** argv) {
@@ -31,7 +32,7 @@ int main(int argc, char** argv) {
   opt = analytic_mode ? LpcvtOptions::for_analytic() : LpcvtOptions::for_frame();
   job.metric_cells = !analytic_mode;
   if (!analytic_mode) job.gradation = 2.0;  // docs/lpcvt.md "Gradation": frames' default
-  std::string in, out, analytic, voronoi_out, init, convention = "auto", frame_out, cells_kind;
+  std::string in, out, analytic, voronoi_out, init, convention = "auto", frame_out, cells_kind, geometry;
   int grid = 16, initial = -1;
   bool sampled = false, strict = false, no_exact = false;
   auto& app = tool.app();
@@ -86,11 +87,15 @@ int main(int argc, char** argv) {
   app.add_option("--ramp-after", opt.ramp_after, "Cycles after which the settled fraction ramps up by 0.5% per cycle to 5% (thesis §4.5)")
       ->capture_default_str();
   app.add_option("--voronoi", voronoi_out, "Also write the initial and final clipped Voronoi diagrams (JSON)");
+  app.add_option("--geometry", geometry, "The domain's true boundary (.geo, .brep, .step; named physical curves): boundary "
+                 "points on its curves, equidistributed in the metric, and its names as the boundary groups (docs/curved.md)")
+      ->check(CLI::ExistingFile);
   app.add_flag("--strict", strict, "Exit code 1 when the optimiser stopped early (the mesh is written anyway)");
 
   return tool.run(argc, argv, [&] {
     if (in.empty() == analytic.empty()) throw InputError("", "give either FRAME.msh or --analytic saddle");
     if (!in.empty()) tool.input(in);
+    if (!geometry.empty()) tool.input(geometry);
     tool.output(out);
     if (!voronoi_out.empty()) tool.output(voronoi_out);
     if (!frame_out.empty()) tool.output(frame_out);
@@ -100,8 +105,14 @@ int main(int argc, char** argv) {
     if (!cells_kind.empty()) job.metric_cells = cells_kind == "metric";
     const auto log = [&](const std::string& s) { tool.log(s); };
     Background bg;
+    std::unique_ptr<BoundaryGeometry> g;
     {
       auto ph = tool.phase("read");
+      if (!geometry.empty()) {
+        g = open_geometry(geometry);
+        opt.geometry = g.get();
+        tool.option("geometry", geometry);
+      }
       if (analytic_mode) {
         bg = saddle_background(grid, sampled, job, tool.report(), log);
       } else {

@@ -3,6 +3,8 @@
 #include "cli/tool.hpp"
 #include "io/msh.hpp"
 #include "io/vtu.hpp"
+#include "gmsh/geometry.hpp"
+#include "mesh/curve_boundary.hpp"
 #include "mesh/validate.hpp"
 
 using namespace quadapt;
@@ -15,17 +17,38 @@ int main(int argc, char** argv) {
             "edges on the boundary, non-finite coordinates) and writes OUT atomically as MSH 4.1 ASCII that "
             "reads back bit-exactly, or, when OUT ends in .vtu, as VTK XML for ParaView (the DG solution u as Lagrange "
             "quadrilaterals of degree p, cell fields as cell data, Vinv as a 3x3 tensor). Nothing is written when IN "
-            "is invalid. Formats: docs/file-formats.md.");
-  std::string in, out, require = "any";
+            "is invalid. Formats: docs/file-formats.md. With --geometry G (a CAD file Gmsh opens; its named physical curves are "
+            "IN's boundary names) the boundary nodes are moved onto the true curves and, with --order q >= 2, the cells "
+            "get geometric order q: boundary edges' control points on the curve, the others by the cells' transfinite "
+            "blend of those displacements, else a smooth blend across cells (docs/curved.md); the report gives the minimum "
+            "scaled Jacobian, and a folded cell is refused (--straight-fallback: it keeps straight boundary edges). "
+            "--order 1 without --geometry drops IN's curved geometry (the vertex view, fields kept).");
+  std::string in, out, require = "any", geometry;
+  int order = 0;
+  bool fallback = false;
   tool.app().add_option("IN", in, "Input mesh (.msh)")->required()->check(CLI::ExistingFile);
   tool.app().add_option("-o,--output", out, "Output mesh: .msh (MSH 4.1 ASCII) or .vtu (VTK XML, ParaView)")->required();
   tool.app()
       .add_option("--require", require, "Element type IN must consist of: any, quads or triangles")
       ->check(CLI::IsMember({"any", "quads", "triangles"}))
       ->capture_default_str();
+  tool.app().add_option("--geometry", geometry, "Snap the boundary to this geometry (.geo, .brep, .step: named physical curves)")
+      ->check(CLI::ExistingFile);
+  tool.app().add_option("--order", order, "Geometric order of the output: 2..4 curve the boundary cells (with --geometry); "
+                        "1 keeps straight-sided cells (without --geometry: drops IN's curved geometry)")
+      ->check(CLI::Range(1, 4));
+  tool.app().add_flag("--straight-fallback", fallback, "With --order >= 2: a cell that folds when curved keeps its "
+                      "boundary edges straight (end nodes on the curve; reported as straight_edges) instead of the error");
   return tool.run(argc, argv, [&] {
     tool.input(in);
+    if (!geometry.empty()) tool.input(geometry);
     tool.output(out);
+    if (order > 1 && geometry.empty()) throw InputError("", "--order " + std::to_string(order) + " needs --geometry");
+    std::unique_ptr<BoundaryGeometry> g;
+    if (!geometry.empty()) {
+      auto ph = tool.phase("geometry");
+      g = open_geometry(geometry);
+    }
     ValidateOptions opt;
     opt.require = require == "quads" ? CellKind::Quads : require == "triangles" ? CellKind::Triangles : CellKind::Any;
     opt.allow_curved = true;  // curved quads are converted with their high-order nodes
@@ -33,6 +56,25 @@ int main(int argc, char** argv) {
     {
       auto ph = tool.phase("read");
       m = read_valid_msh(in, opt);
+    }
+    if (order == 1 && geometry.empty() && m.is_curved()) m.curved = CurvedGeometry{};
+    if (g) {
+      auto ph = tool.phase("curve");
+      if (m.is_curved()) throw InputError(in, "the mesh is curved already; --geometry curves straight-sided meshes");
+      const CurveStats st = curve_boundary_cells(m, *g, std::max(order, 1), in, fallback);
+      tool.option("geometry", geometry);
+      tool.report()["snap"] = {{"boundary_nodes", st.snap.boundary_nodes}, {"moved", st.snap.moved},
+                               {"max_move", st.snap.max_move}, {"max_distance", st.snap.max_distance},
+                               {"max_interior_move", st.snap.max_interior_move}};
+      tool.report()["curving"] = {{"order", st.order}, {"boundary_edges", st.boundary_edges},
+                                  {"max_sagitta", st.max_sagitta}, {"max_blend", st.max_blend},
+                                  {"max_distance", st.max_distance},
+                                  {"min_scaled_jacobian", st.min_scaled_jacobian}, {"blend", st.blend},
+                                  {"straight_edges", st.straight_edges}};
+      validate_mesh(m, in, opt);
+      tool.log("boundary on " + geometry + ": " + std::to_string(st.snap.moved) + " of " +
+               std::to_string(st.snap.boundary_nodes) + " boundary nodes moved (at most " + std::to_string(st.snap.max_move) +
+               "); order " + std::to_string(st.order) + ", min scaled Jacobian " + std::to_string(st.min_scaled_jacobian));
     }
     {
       auto ph = tool.phase("write");

@@ -3,7 +3,9 @@
 #include <string>
 
 #include "cli/tool.hpp"
+#include "gmsh/geometry.hpp"
 #include "io/msh.hpp"
+#include "mesh/snap.hpp"
 #include "mesh/validate.hpp"
 #include "refine/refine.hpp"
 
@@ -22,7 +24,7 @@ int main(int argc, char** argv) {
             "cells become two edges of the same group. The output carries no fields (they "
             "belong to the old mesh) unless --keep-fields copies the scalar cell fields to the "
             "children. Report: cells before/after, flagged, added by balancing, hanging nodes.");
-  std::string in, out;
+  std::string in, out, geometry;
   bool uniform = false;
   RefineOptions opt;
   opt.fraction = 0.3;
@@ -39,13 +41,23 @@ int main(int argc, char** argv) {
                  ->capture_default_str();
   app.add_flag("--keep-fields", opt.keep_scalar_fields,
                "Copy every 1-component cell field of MESH to the children (piecewise constant)");
+  app.add_option("--geometry", geometry, "Snap the boundary nodes (the new mid-edge ones) to the true curves of this "
+                 "geometry (.geo, .brep, .step; named physical curves = MESH's boundary names; docs/curved.md)")
+      ->check(CLI::ExistingFile);
   u->excludes(by);
   u->excludes(fr);
   fr->needs(by);
 
   return tool.run(argc, argv, [&] {
     tool.input(in);
+    if (!geometry.empty()) tool.input(geometry);
     tool.output(out);
+    std::unique_ptr<BoundaryGeometry> g;
+    if (!geometry.empty()) {
+      auto ph = tool.phase("geometry");
+      g = open_geometry(geometry);
+      tool.option("geometry", geometry);
+    }
     if (!uniform && opt.by.empty())
       throw InputError("", "choose --uniform or --by FIELD [--fraction F]");
     opt.mode = uniform ? RefineOptions::Mode::Uniform : RefineOptions::Mode::Fraction;
@@ -66,6 +78,12 @@ int main(int argc, char** argv) {
     {
       auto ph = tool.phase("refine");
       r = refine_mesh(m, opt, &s, in);
+    }
+    if (g) {
+      auto ph = tool.phase("snap");
+      const SnapStats ss = snap_to_geometry(r, *g, in, s.hanging_after == 0);
+      tool.report()["snap"] = {{"boundary_nodes", ss.boundary_nodes}, {"moved", ss.moved}, {"max_move", ss.max_move},
+                               {"max_distance", ss.max_distance}, {"max_interior_move", ss.max_interior_move}};
     }
     auto& rep = tool.report();
     rep["cells_before"] = s.cells_before;

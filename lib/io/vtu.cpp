@@ -49,12 +49,15 @@ void write_vtu(const Mesh& m, std::ostream& out, const std::string& path) {
     throw InputError(path, "a DG field (degree " + std::to_string(q) +
                                ") on a mesh with triangles cannot be written as VTK Lagrange quadrilaterals");
   const int nc = m.num_cells();
+  // Curved cells (mesh/curved.hpp) are Lagrange quadrilaterals of degree max(p, q) on the map.
+  if (m.is_curved()) q = std::max(q, m.geometric_order());
+  const bool cell_points = node_fields || m.is_curved();
 
   // Points and connectivity.
   std::vector<Vec2> pts;
   std::vector<int> conn, offsets, types;
   std::vector<CellPoints> refs;  // per cell, only when node_fields
-  if (!node_fields) {
+  if (!cell_points) {
     pts = m.nodes;
     for (int c = 0; c < nc; ++c) {
       for (int i = 0; i < m.cells[c].nv; ++i) conn.push_back(m.cells[c].v[i]);

@@ -11,6 +11,7 @@
 
 #include "frame/frame.hpp"
 #include "lpcvt/delaunay.hpp"
+#include "lpcvt/geometry_boundary.hpp"
 #include "lpcvt/lattice.hpp"
 #include "lpcvt/multilevel.hpp"
 #include "lpcvt/triangulate.hpp"
@@ -33,8 +34,15 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
   using Clock = std::chrono::steady_clock;
   LpcvtResult r;
   // Boundary (§4.2).
-  const auto curves = boundary_curves(bg, opt.corner_angle);
-  r.boundary = mesh_boundary(bg, curves, opt.boundary_samples);
+  const auto curves = opt.geometry ? std::vector<BoundaryCurve>{} : boundary_curves(bg, opt.corner_angle);
+  Mesh groups;  // the output's boundary groups and domain name: the background's or the geometry's
+  groups.domain_name = bg.mesh().domain_name;
+  groups.domain_tag = bg.mesh().domain_tag;
+  groups.groups = bg.mesh().groups;
+  auto boundary_of = [&](const Background& b) {
+    return opt.geometry ? geometry_boundary(b, *opt.geometry, groups.groups) : mesh_boundary(b, curves, opt.boundary_samples);
+  };
+  r.boundary = boundary_of(bg);
   for (double l : r.boundary.curve_length) r.boundary_metric_length += l;
   r.metric_area = bg.metric_area();
   r.requested_points = r.metric_area + 0.5 * r.boundary_metric_length + 1;
@@ -105,7 +113,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
     lrec = &r.levels.back();
     lrec->level = level;
     lrec->scale = f;
-    bnd = level > 0 ? mesh_boundary(*lbg, curves, opt.boundary_samples) : r.boundary;
+    bnd = level > 0 ? boundary_of(*lbg) : r.boundary;
     const std::vector<Vec2> prev_free(sites.begin() + std::min<size_t>(nfixed, sites.size()), sites.end());
     nfixed = static_cast<int>(bnd.points.size());
     sites = bnd.points;
@@ -127,7 +135,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
         lrec->start_points = static_cast<int>(sites.size());
       }
       r.initial_sites = sites;
-      say(std::to_string(curves.size()) + " boundary curves, " + std::to_string(r.nfixed) +
+      say(std::to_string(r.boundary.curve_length.size()) + " boundary curves, " + std::to_string(r.nfixed) +
           " boundary points; requested points " + fmt("%.1f", r.requested_points) + " (metric area " +
           fmt("%.1f", r.metric_area) + ")" +
           (nlevels ? "; " + std::to_string(nlevels + 1) + " levels, the coarsest with " + std::to_string(nfixed) +
@@ -218,7 +226,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
     r.stop = "split/merge still changing more than the tolerance after " + std::to_string(opt.max_cycles) + " cycles";
   else
     r.stop = "last minimisation stopped early: " + last.stop;
-  r.mesh = triangulate_domain(sites, r.nfixed, r.boundary.segments, r.boundary.segment_group, bg.mesh());
+  r.mesh = triangulate_domain(sites, r.nfixed, r.boundary.segments, r.boundary.segment_group, groups);
   if (bg.metric_cells()) r.metric_flips = metric_flip_triangles(r.mesh, bg);
   if (!bg.is_analytic()) attach_frame(r.mesh, bg);
   say(std::to_string(r.sites.size()) + " points (requested " + fmt("%.0f", r.requested_points) + "), " +

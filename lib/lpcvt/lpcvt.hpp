@@ -27,6 +27,10 @@
 #include "lpcvt/split_merge.hpp"
 #include "mesh/mesh.hpp"
 
+namespace quadapt {
+class BoundaryGeometry;
+}
+
 namespace quadapt::lpcvt {
 
 struct LpcvtOptions {
@@ -46,6 +50,10 @@ struct LpcvtOptions {
   bool multilevel = false;      ///< multilevel start (above); the coarsest level uses seed_mode
   int coarse_points = 250;      ///< multilevel: interior points of the coarsest level, at least
   double lattice_delta = 0.75;   ///< SeedMode::Lattice: rejection distance (metric units)
+  /// The domain's true boundary (docs/curved.md): boundary points on its curves
+  /// (geometry_boundary.hpp) instead of the background mesh's polygon, and its physical names as
+  /// the output's boundary groups. Not owned; nullptr: the background's boundary.
+  const BoundaryGeometry* geometry = nullptr;
   bool exact_count = true;      ///< set the point count to the requested one at the start of each
                                 ///< level (multilevel) and before the polish, see adjust_count
 

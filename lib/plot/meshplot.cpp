@@ -5,16 +5,22 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <unordered_map>
 #include <sstream>
 #include <vector>
 
 #include "core/error.hpp"
 #include "fem/basis.hpp"
+#include "mesh/boundary.hpp"
+#include "mesh/curved.hpp"
 #include "plot/svg.hpp"
 
 namespace quadapt::plot {
 
 namespace {
+
+/// Line segments per curved edge (mesh/curved.hpp: the map sampled along the edge).
+constexpr int kCurvedEdgeSamples = 8;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -291,7 +297,18 @@ std::string render_mesh_svg(const Mesh& m, const MeshPlotOptions& opt, MeshPlotS
     for (int c : visible) {
       const Cell& cell = m.cells[c];
       d.move(px(m.nodes[cell.v[0]]), py(m.nodes[cell.v[0]]));
-      for (int i = 1; i < cell.nv; ++i) d.line(px(m.nodes[cell.v[i]]), py(m.nodes[cell.v[i]]));
+      for (int i = 0; i < cell.nv; ++i) {
+        if (m.is_curved()) {  // curved edges: the map sampled along the edge
+          const CellMap G(m, c);
+          for (int k = 1; k < kCurvedEdgeSamples; ++k) {
+            double xi = 0, eta = 0;
+            edge_reference_point(i, static_cast<double>(k) / kCurvedEdgeSamples, xi, eta);
+            const Vec2 x = G.map(xi, eta);
+            d.line(px(x), py(x));
+          }
+        }
+        if (i + 1 < cell.nv) d.line(px(m.nodes[cell.v[i + 1]]), py(m.nodes[cell.v[i + 1]]));
+      }
       d.close();
     }
     if (frame) svg.path(d, "none", "#a8a8a8", sw, "stroke-linejoin=\"round\"");
@@ -300,9 +317,34 @@ std::string render_mesh_svg(const Mesh& m, const MeshPlotOptions& opt, MeshPlotS
   }
   {
     PathData d;
+    std::unordered_map<std::uint64_t, std::pair<int, int>> cell_edge;  // directed edge -> (cell, local edge)
+    if (m.is_curved())
+      for (int c = 0; c < m.num_cells(); ++c)
+        for (int i = 0; i < 4; ++i)
+          cell_edge[directed_edge_key(m.cells[c].v[i], m.cells[c].v[(i + 1) % 4])] = {c, i};
     for (const auto& e : m.boundary) {
       const Vec2& a = m.nodes[e.v[0]];
       const Vec2& b = m.nodes[e.v[1]];
+      auto it = cell_edge.find(directed_edge_key(e.v[0], e.v[1]));
+      bool reversed = false;
+      if (it == cell_edge.end()) {
+        it = cell_edge.find(directed_edge_key(e.v[1], e.v[0]));
+        reversed = true;
+      }
+      if (it != cell_edge.end()) {  // curved boundary edge
+        const CellMap G(m, it->second.first);
+        if (clip && (std::max(a.x(), b.x()) < W.x0 || std::min(a.x(), b.x()) > W.x1 || std::max(a.y(), b.y()) < W.y0 ||
+                     std::min(a.y(), b.y()) > W.y1))
+          continue;
+        d.move(px(a), py(a));
+        for (int k = 1; k <= kCurvedEdgeSamples; ++k) {
+          double xi = 0, eta = 0, s = static_cast<double>(k) / kCurvedEdgeSamples;
+          edge_reference_point(it->second.second, reversed ? 1 - s : s, xi, eta);
+          const Vec2 x = G.map(xi, eta);
+          d.line(px(x), py(x));
+        }
+        continue;
+      }
       if (clip && std::max(a.x(), b.x()) < W.x0) continue;
       if (clip && std::min(a.x(), b.x()) > W.x1) continue;
       if (clip && std::max(a.y(), b.y()) < W.y0) continue;

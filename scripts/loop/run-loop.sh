@@ -28,7 +28,7 @@ die() { echo "loop: error: $*" >&2; exit 2; }
 
 # The one set of loop defaults (Makefile.cases passes only what the user sets).
 CASE="" MESH="" P="" METHOD="" MODE="" STEPS="6" GROWTH="1.5" OUT="" MAXDOFS="0" FRACTION="0.3" FF_BY=""
-SEED="1" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0
+SEED="1" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0 GEOMETRY="" ORDER=""
 while [ $# -gt 0 ]; do
   opt="$1"
   case "$opt" in
@@ -42,6 +42,7 @@ while [ $# -gt 0 ]; do
     --maxdofs) MAXDOFS="$val" ;; --fraction) FRACTION="$val" ;; --ff-by) FF_BY="$val" ;;
     --seed) SEED="$val" ;; --smooth-bamg) SMOOTH_BAMG="$val" ;; --pictures) PICTURES="$val" ;;
     --window) WINDOW="$val" ;; --thesis-case) THESIS_KEY="$val" ;;
+    --geometry) GEOMETRY="$val" ;; --order) ORDER="$val" ;;
     *) die "unknown option $opt (see docs/loop.md)" ;;
   esac
 done
@@ -82,12 +83,20 @@ is_uint "$SEED" || die "SEED='$SEED': must be a non-negative integer"
 [ -n "$OUT" ] || die "OUT is not set (the run directory)"
 case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
+if [ -n "$GEOMETRY" ]; then  # the true geometry (docs/curved.md): meshes snapped to it, cells of order ORDER
+  [ -f "$GEOMETRY" ] || die "GEOMETRY '$GEOMETRY': no such file"
+  [ "$METHOD" != fixed-fraction ] || die "GEOMETRY with METHOD=fixed-fraction: not yet (use uniform, lpcvt or bamg)"
+  GEOMETRY="$(cd "$(dirname "$GEOMETRY")" && pwd)/$(basename "$GEOMETRY")"
+  if [ -z "$ORDER" ]; then ORDER=$(( P < 1 ? 1 : (P > 4 ? 4 : P) )); fi
+  [[ "$ORDER" =~ ^[1-4]$ ]] || die "ORDER='$ORDER': the geometric order must be 1..4"
+fi
 if [ -z "$FF_BY" ]; then
   if [ "$MODE" = goal ]; then FF_BY=dwr; else FF_BY=A1h; fi
 fi
 
 # tools this loop needs
 tools=(dgsolve)
+[ -n "$GEOMETRY" ] && tools+=(meshconvert)
 case "$METHOD" in
   uniform) tools+=(refine) ;;
   fixed-fraction) if [ "$MODE" = goal ]; then tools+=(adjoint refine); else tools+=(estimate-frame refine); fi ;;
@@ -140,7 +149,7 @@ mesh_sum="$(sha256sum "$MESH" | cut -c1-16)"
 # STEPS and MAXDOFS only say where to stop: a finished run can be continued with more steps.
 msg="$(ctl params "$OUT/loop.json" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
   method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" \
-  smooth_bamg="$SMOOTH_BAMG" 2>&1)" || die "$msg"
+  smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} 2>&1)" || die "$msg"
 
 name="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
 say() { echo "[$name] $*"; }
@@ -204,7 +213,25 @@ link_into() {  # link_into SRC DST: DST = SRC (hard link, else copy), atomically
 
 say "CASE=$(basename "$CASE") P=$P METHOD=$METHOD MODE=$MODE STEPS=$STEPS GROWTH=$GROWTH MAXDOFS=$MAXDOFS -> $OUT"
 mkdir -p "$OUT/step-0"
-if [ ! -s "$OUT/step-0/mesh.msh" ]; then link_into "$MESH" "$OUT/step-0/mesh.msh"; fi
+if [ -n "$GEOMETRY" ]; then
+  # step-K/straight.msh: the straight-sided mesh with its boundary nodes on the true curves (what
+  # refine and the frame tools work on); step-K/mesh.msh: the same cells of order ORDER (dgsolve's)
+  on_geometry() {  # on_geometry DIR SRC DST-DIR
+    run_tool "$1" flat "$1/next-flat.msh" "$2" -- meshconvert "$2" --order 1 -o "$1/next-flat.msh"
+    run_tool "$1" snap "$1/next-straight.msh" "$1/next-flat.msh" "$GEOMETRY" -- \
+      meshconvert "$1/next-flat.msh" --geometry "$GEOMETRY" --order 1 -o "$1/next-straight.msh"
+    run_tool "$1" curve "$1/next-curved.msh" "$1/next-straight.msh" -- \
+      meshconvert "$1/next-straight.msh" --geometry "$GEOMETRY" --order "$ORDER" --straight-fallback -o "$1/next-curved.msh"
+    mkdir -p "$3"
+    if [ ! -s "$3/mesh.msh" ] || [ "$1/next-curved.msh" -nt "$3/mesh.msh" ]; then
+      link_into "$1/next-straight.msh" "$3/straight.msh"
+      link_into "$1/next-curved.msh" "$3/mesh.msh"
+    fi
+  }
+  mkdir -p "$OUT/step-0/start"
+  if [ ! -s "$OUT/step-0/start/mesh.msh" ]; then link_into "$MESH" "$OUT/step-0/start/mesh.msh"; fi
+  on_geometry "$OUT/step-0/start" "$OUT/step-0/start/mesh.msh" "$OUT/step-0"
+elif [ ! -s "$OUT/step-0/mesh.msh" ]; then link_into "$MESH" "$OUT/step-0/mesh.msh"; fi
 
 k=0
 last=0
@@ -229,7 +256,12 @@ while :; do
   next="$d/adapted.msh"
   case "$METHOD" in
     uniform)
-      run_tool "$d" refine "$d/adapted.msh" "$d/mesh.msh" -- refine "$d/mesh.msh" --uniform -o "$d/adapted.msh" ;;
+      if [ -n "$GEOMETRY" ]; then
+        run_tool "$d" refine "$d/adapted.msh" "$d/straight.msh" -- refine "$d/straight.msh" --uniform \
+          --geometry "$GEOMETRY" -o "$d/adapted.msh"
+      else
+        run_tool "$d" refine "$d/adapted.msh" "$d/mesh.msh" -- refine "$d/mesh.msh" --uniform -o "$d/adapted.msh"
+      fi ;;
     fixed-fraction)
       if [ "$MODE" = goal ]; then
         run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" "$CASE" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
@@ -246,7 +278,12 @@ while :; do
           refine "$ind" --fraction "$FRACTION" --by "$FF_BY" -o "$d/adapted.msh"
       fi ;;
     lpcvt|bamg)
-      run_tool "$d" estimate-frame "$d/shape.msh" "$d/sol.msh" -- estimate-frame "$d/sol.msh" -o "$d/shape.msh"
+      sol="$d/sol.msh" geo=()
+      if [ -n "$GEOMETRY" ]; then  # the frame tools work on the vertex view of the curved solution
+        sol="$d/sol-straight.msh" geo=(--geometry "$GEOMETRY")
+        run_tool "$d" straight "$sol" "$d/sol.msh" -- meshconvert "$d/sol.msh" --order 1 -o "$sol"
+      fi
+      run_tool "$d" estimate-frame "$d/shape.msh" "$sol" -- estimate-frame "$sol" -o "$d/shape.msh"
       if [ "$MODE" = goal ]; then
         run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" "$CASE" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
         run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" "$d/dwr.msh" -- \
@@ -256,14 +293,14 @@ while :; do
           size-solve "$d/shape.msh" --growth "$GROWTH" -o "$d/frame.msh"
       fi
       if [ "$METHOD" = lpcvt ]; then
-        run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED"
+        run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED" ${geo[@]+"${geo[@]}"}
         # the tools' defaults: recombine matches in the metric of the frame lpcvt attached to
         # tri.msh (no node moves; docs/recombine.md)
         run_tool "$d" recombine "$d/quad.msh" "$d/tri.msh" -- recombine "$d/tri.msh" -o "$d/quad.msh"
         run_tool "$d" quadsmooth "$d/adapted.msh" "$d/quad.msh" "$d/frame.msh" -- \
           quadsmooth "$d/quad.msh" -o "$d/adapted.msh" --frame "$d/frame.msh"
       else
-        run_tool "$d" bamgquad "$d/quad.msh" "$d/frame.msh" -- bamgquad "$d/frame.msh" -o "$d/quad.msh"
+        run_tool "$d" bamgquad "$d/quad.msh" "$d/frame.msh" -- bamgquad "$d/frame.msh" -o "$d/quad.msh" ${geo[@]+"${geo[@]}"}
         if [ "$SMOOTH_BAMG" = yes ]; then
           run_tool "$d" quadsmooth "$d/adapted.msh" "$d/quad.msh" -- quadsmooth "$d/quad.msh" -o "$d/adapted.msh"
         else
@@ -274,7 +311,9 @@ while :; do
   # step k+1's mesh = this step's result (hard link), unless already up to date
   nd="$OUT/step-$((k + 1))"
   mkdir -p "$nd"
-  if [ ! -s "$nd/mesh.msh" ] || [ "$next" -nt "$nd/mesh.msh" ]; then link_into "$next" "$nd/mesh.msh"; fi
+  if [ -n "$GEOMETRY" ]; then
+    on_geometry "$d" "$next" "$nd"
+  elif [ ! -s "$nd/mesh.msh" ] || [ "$next" -nt "$nd/mesh.msh" ]; then link_into "$next" "$nd/mesh.msh"; fi
   k=$((k + 1))
 done
 

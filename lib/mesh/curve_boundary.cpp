@@ -1,0 +1,220 @@
+#include "mesh/curve_boundary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/error.hpp"
+#include "mesh/boundary.hpp"
+#include "mesh/curved.hpp"
+
+namespace quadapt {
+
+namespace {
+
+struct CurvedEdge {
+  Vec2 a, b;                // chord (from node v[0] to v[1] of the boundary edge)
+  std::vector<Vec2> delta;  // q+1 displacements at s = i/q (0 at both ends)
+  Vec2 lo, hi;              // bounding box of the influence zone
+  double rho = 0;
+};
+
+}  // namespace
+
+CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const std::string& path, bool fallback) {
+  if (q < 1 || q > kMaxGeometricOrder)
+    throw InputError(
+        "", "geometric order " + std::to_string(q) + " not supported (1.." + std::to_string(kMaxGeometricOrder) + ")");
+  if (m.is_curved())
+    throw InputError(path, "the mesh is curved already (geometric order " + std::to_string(m.geometric_order()) + ")");
+  if (!m.all_quads()) throw InputError(path, "curved cells must be quads (the mesh has triangles)");
+  CurveStats st;
+  st.snap = snap_to_geometry(m, g, path);
+  st.order = q;
+  if (q == 1) return st;
+  const auto curves = group_curves(m, g, path);
+
+  // boundary edges: control points on the curve
+  std::map<std::uint64_t, std::vector<Vec2>> on_curve;  // directed edge key (v0 -> v1) -> q+1 points
+  std::vector<CurvedEdge> edges;
+  for (const auto& e : m.boundary) {
+    const Vec2 a = m.nodes[e.v[0]], b = m.nodes[e.v[1]];
+    int k = -1;
+    g.closest_point(curves[e.group], 0.5 * (a + b), &k);
+    const auto& cv = g.curves()[k];
+    double ta = g.closest_parameter(k, a), tb = g.closest_parameter(k, b);
+    const double len = (b - a).norm();
+    if ((g.point(k, ta) - a).norm() > 1e-9 * len || (g.point(k, tb) - b).norm() > 1e-9 * len)
+      throw InputError(path, "boundary edge " + point_text(a) + " - " + point_text(b) +
+                                 " does not lie on one curve of " + g.source() +
+                                 " (a corner of the geometry is not a node of the mesh)");
+    if (cv.closed()) {  // the short way round
+      const double P = cv.t1 - cv.t0;
+      if (tb - ta > 0.5 * P) tb -= P;
+      if (ta - tb > 0.5 * P) tb += P;
+    } else {  // exact corners
+      if (ta == cv.t0 || ta == cv.t1)
+        ta = (g.point(k, cv.t0) - a).norm() < (g.point(k, cv.t1) - a).norm() ? cv.t0 : cv.t1;
+      if (tb == cv.t0 || tb == cv.t1)
+        tb = (g.point(k, cv.t0) - b).norm() < (g.point(k, cv.t1) - b).norm() ? cv.t0 : cv.t1;
+    }
+    std::vector<double> t(q - 1);
+    for (int i = 1; i < q; ++i) t[i - 1] = ta + (tb - ta) * i / q;
+    const std::vector<Vec2> mid = g.points(k, t);
+    std::vector<Vec2> pts{a};
+    pts.insert(pts.end(), mid.begin(), mid.end());
+    pts.push_back(b);
+    CurvedEdge ce;
+    ce.a = a;
+    ce.b = b;
+    ce.rho = len;
+    for (int i = 0; i <= q; ++i) {
+      Vec2 d = pts[i] - (a + (static_cast<double>(i) / q) * (b - a));
+      if (i == 0 || i == q) d.setZero();
+      ce.delta.push_back(d);
+      st.max_sagitta = std::max(st.max_sagitta, d.norm());
+      if (i > 0 && i < q)
+        st.max_distance = std::max(st.max_distance, (g.closest_point(curves[e.group], pts[i]) - pts[i]).norm());
+    }
+    ce.lo = a.cwiseMin(b).array() - len;
+    ce.hi = a.cwiseMax(b).array() + len;
+    edges.push_back(std::move(ce));
+    on_curve[directed_edge_key(e.v[0], e.v[1])] = pts;
+    ++st.boundary_edges;
+  }
+
+  std::vector<double> l(q + 1), dl(q + 1);
+  auto blend = [&](const Vec2& x) {
+    Vec2 D(0, 0);
+    double W = 0;
+    for (const auto& e : edges) {
+      if ((x.array() < e.lo.array()).any() || (x.array() > e.hi.array()).any()) continue;
+      const Vec2 ab = e.b - e.a;
+      const double s = std::clamp((x - e.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      const double w = wendland_c2((x - (e.a + s * ab)).norm() / e.rho);
+      if (w == 0) continue;
+      equispaced_lagrange(q, 2 * s - 1, l.data(), dl.data());
+      Vec2 d(0, 0);
+      for (int i = 0; i <= q; ++i) d += l[i] * e.delta[i];
+      D += w * d;
+      W += w;
+    }
+    return W > 1 ? Vec2(D / W) : D;
+  };
+
+  std::vector<char> on_boundary(m.nodes.size(), 0);
+  for (const auto& e : m.boundary) on_boundary[e.v[0]] = on_boundary[e.v[1]] = 1;
+  auto build = [&](bool global) {
+    // interior vertices first (the corners of the control grids)
+    std::vector<Vec2> nodes = m.nodes;
+    for (size_t v = 0; v < nodes.size(); ++v)
+      if (!on_boundary[v]) {
+        Vec2 D = global ? blend(m.nodes[v]) : Vec2(0, 0);
+        st.max_blend = std::max(st.max_blend, D.norm());
+        nodes[v] += D;
+      }
+
+    const int n1 = q + 1;
+    std::vector<Vec2> P(static_cast<size_t>(m.num_cells()) * n1 * n1);
+    for (int c = 0; c < m.num_cells(); ++c) {
+      const Cell& cell = m.cells[c];
+      Vec2* X = P.data() + static_cast<size_t>(c) * n1 * n1;
+      Vec2 V[4];
+      for (int k = 0; k < 4; ++k) V[k] = m.nodes[cell.v[k]];  // straight positions
+      // interior: bilinear map of the straight cell, then the blend
+      for (int j = 1; j < q; ++j)
+        for (int i = 1; i < q; ++i) {
+          const double xi = -1 + 2.0 * i / q, eta = -1 + 2.0 * j / q;
+          Vec2 x = 0.25 * ((1 - xi) * (1 - eta) * V[0] + (1 + xi) * (1 - eta) * V[1] + (1 + xi) * (1 + eta) * V[2] +
+                           (1 - xi) * (1 + eta) * V[3]);
+          Vec2 D = global ? blend(x) : Vec2(0, 0);
+          if (global) st.max_blend = std::max(st.max_blend, D.norm());
+          X[i + n1 * j] = x + D;
+        }
+      for (int e = 0; e < 4; ++e) {
+        const int A = cell.v[e], B = cell.v[(e + 1) % 4];
+        const std::vector<int> idx = edge_control_points(q, e);
+        auto it = on_curve.find(directed_edge_key(A, B));
+        auto rit = on_curve.find(directed_edge_key(B, A));
+        for (int k = 0; k <= q; ++k) {
+          Vec2 x;
+          if (k == 0)
+            x = nodes[A];
+          else if (k == q)
+            x = nodes[B];
+          else if (it != on_curve.end())
+            x = it->second[k];
+          else if (rit != on_curve.end())
+            x = rit->second[q - k];
+          else {  // canonical direction (lower node id first): neighbours
+                  // compute the same point
+            const bool fwd = A < B;
+            const Vec2 a = m.nodes[fwd ? A : B], b = m.nodes[fwd ? B : A];
+            const double s = static_cast<double>(fwd ? k : q - k) / q;
+            Vec2 y = a + s * (b - a);
+            Vec2 D = global ? blend(y) : Vec2(0, 0);
+            if (global) st.max_blend = std::max(st.max_blend, D.norm());
+            x = y + D;
+          }
+          X[idx[k]] = x;
+        }
+      }
+      if (!global) {  // transfinite (Coons) blend of the cell's own edge
+                      // displacements
+        Vec2 E[4][kMaxGeometricOrder + 1];
+        for (int e = 0; e < 4; ++e) {
+          const std::vector<int> idx = edge_control_points(q, e);
+          const Vec2 a = V[e], b = V[(e + 1) % 4];
+          for (int k = 0; k <= q; ++k) E[e][k] = X[idx[k]] - (a + (static_cast<double>(k) / q) * (b - a));
+        }
+        for (int j = 1; j < q; ++j)
+          for (int i = 1; i < q; ++i) {
+            const double xi = -1 + 2.0 * i / q, eta = -1 + 2.0 * j / q;
+            X[i + n1 * j] +=
+                0.5 * ((1 - eta) * E[0][i] + (1 + xi) * E[1][j] + (1 + eta) * E[2][q - i] + (1 - xi) * E[3][q - j]);
+          }
+      }
+    }
+    Mesh r = m;
+    r.nodes = nodes;
+    r.curved.order = q;
+    r.curved.points = std::move(P);
+    return r;
+  };
+  // the cells' own transfinite blend when it folds nothing, else the smooth blend across cells;
+  // with `fallback`, a cell that still folds gets its boundary edges straight, until none folds
+  Mesh best;
+  ScaledJacobian sj;
+  for (int attempt = 0;; ++attempt) {
+    sj = ScaledJacobian{};
+    for (bool global : {false, true}) {
+      Mesh r = build(global);
+      const ScaledJacobian s2 = min_scaled_jacobian(r);
+      if (global && s2.min <= sj.min) continue;
+      best = std::move(r);
+      sj = s2;
+      st.blend = global ? "smooth" : "transfinite";
+      if (sj.min > 0) break;
+    }
+    if (sj.min > 0 || !fallback || attempt >= 1000) break;
+    const Cell& bad = m.cells[sj.cell];
+    int erased = 0;
+    for (int e = 0; e < 4; ++e) {
+      const int A = bad.v[e], B = bad.v[(e + 1) % 4];
+      erased += static_cast<int>(on_curve.erase(directed_edge_key(A, B)) + on_curve.erase(directed_edge_key(B, A)));
+    }
+    if (erased == 0) break;  // folds without a curved edge: nothing to fall back to
+    st.straight_edges += erased;
+  }
+  m = std::move(best);
+  st.min_scaled_jacobian = sj.min;
+  st.worst_cell = sj.cell;
+  if (sj.min <= 0)
+    throw NumericalError(path + ": curving the boundary cells folds cell " + std::to_string(sj.cell) +
+                         " (minimum scaled Jacobian " + std::to_string(sj.min) +
+                         "): the cell is too coarse along the curve; refine "
+                         "there or lower --order");
+  return st;
+}
+
+}  // namespace quadapt

@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# --geometry (docs/curved.md, "Geometry"): lpcvt, refine, bamgquad and meshconvert take the true
+# boundary from a CAD file through the Gmsh SDK. Bad files, files without physical names, a curve
+# the frame cannot resolve and a mesh of another domain: exit 2, one line naming the file, nothing
+# written. Then the boundary nodes of lpcvt's points, refine's and meshconvert's output lie on the
+# circle to 1e-12, and a 2-step adaptive loop on the cylinder keeps them there.
+set -euo pipefail
+S=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+BIN=${QUADAPT_BIN_DIR:-}
+[ -n "$BIN" ] && PATH="$BIN:$PATH"
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+G="$S/examples/geometry/cylinder.geo"
+M="$S/examples/meshes/cylinder.msh"
+C="$S/examples/cases/cylinder.json"
+on_circle() {  # on_circle MESH [ALLOWED-OFF]
+  python3 "$S/scripts/curved/check_boundary.py" "$1" --group cylinder --circle 0 0 0.5 --max 1e-12 --allow-off "${2:-0}" \
+    >"$T/on.json" || fail "$1: boundary nodes off the circle: $(cat "$T/on.json")"
+}
+
+# a frame on the cylinder's start mesh
+dgsolve -q "$M" -c "$C" -p 1 -o "$T/sol.msh"
+estimate-frame -q "$T/sol.msh" -o "$T/shape.msh"
+size-solve -q "$T/shape.msh" --growth 1.5 -o "$T/frame.msh"
+
+# --- refusals: exit 2, one line naming the file, nothing written
+printf 'Point(1) = {0, 0, 0\n' > "$T/bad.geo"
+cat > "$T/noname.geo" <<'GEO'
+SetFactory("OpenCASCADE");
+Rectangle(1) = {-1.5, -1.5, 0, 5, 3};
+Disk(2) = {0, 0, 0, 0.5};
+BooleanDifference(3) = {Surface{1}; Delete;}{Surface{2}; Delete;};
+GEO
+expect_refusal() {  # expect_refusal PATTERN OUT -- command...
+  local pat="$1" out="$2"; shift 3
+  local rc=0
+  "$@" -q 2>"$T/err" >/dev/null || rc=$?
+  [ $rc -eq 2 ] || fail "$* : exit $rc (expected 2): $(cat "$T/err")"
+  [ "$(wc -l <"$T/err")" -eq 1 ] || fail "$*: not one line: $(cat "$T/err")"
+  grep -q -- "$pat" "$T/err" || fail "$*: message '$(cat "$T/err")' lacks '$pat'"
+  [ ! -e "$out" ] || fail "$*: wrote $out"
+  [ ! -e "${out%.*}.json" ] || fail "$*: wrote the report"
+}
+for tool in "lpcvt $T/frame.msh" "refine $M --uniform" "bamgquad $T/frame.msh" "meshconvert $M"; do
+  expect_refusal "bad.geo: Gmsh cannot open it" "$T/o.msh" -- $tool --geometry "$T/bad.geo" -o "$T/o.msh"
+  expect_refusal "noname.geo: no named physical curves" "$T/o.msh" -- $tool --geometry "$T/noname.geo" -o "$T/o.msh"
+done
+# a frame far too coarse for the circle: a segment would turn by more than 60 degrees
+expect_refusal "cylinder.geo: curve 'cylinder' (5) is not resolved by the frame" "$T/o.msh" -- \
+  lpcvt "$T/frame.msh" --complexity 8 --degree 1 --geometry "$G" -o "$T/o.msh"
+# a geometry of another domain (the annulus 1 <= r <= 2: its outer circle leaves the channel)
+expect_refusal "annulus.geo: curve 'outer'" "$T/o.msh" -- lpcvt "$T/frame.msh" --geometry "$S/examples/geometry/annulus.geo" -o "$T/o.msh"
+expect_refusal "boundary 'inlet' is not a physical curve of" "$T/o.msh" -- \
+  refine "$M" --uniform --geometry "$S/examples/geometry/annulus.geo" -o "$T/o.msh"
+expect_refusal "--order 3 needs --geometry" "$T/o.msh" -- meshconvert "$M" --order 3 -o "$T/o.msh"
+
+# --- boundary points on the true circle
+lpcvt -q "$T/frame.msh" --geometry "$G" -o "$T/tri.msh"
+on_circle "$T/tri.msh"
+python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['options']['geometry'].endswith('cylinder.geo'), r['options']" "$T/tri.json"
+if command -v "${QUADAPT_FFBAMG:-ffbamg}" >/dev/null; then  # BAMG meshes the polygon; the nodes are projected
+  bamgquad -q "$T/frame.msh" --geometry "$G" -o "$T/bq.msh"
+  on_circle "$T/bq.msh"
+  meshconvert -q "$T/bq.msh" --require quads -o "$T/bq2.msh"  # valid
+fi
+refine -q "$M" --uniform --geometry "$G" -o "$T/r.msh"
+on_circle "$T/r.msh"
+for q in 1 2 3; do
+  meshconvert -q "$T/r.msh" --geometry "$G" --order $q -o "$T/c$q.msh"
+  on_circle "$T/c$q.msh"
+  python3 -c "import json,sys; c=json.load(open(sys.argv[1]))['curving']; assert c['order'] == $q and c['min_scaled_jacobian'] > 0.2 and c['straight_edges'] == 0, c" "$T/c$q.json" \
+    || fail "meshconvert --order $q report"
+done
+meshplot -q "$T/c3.msh" -o "$T/c3.svg" --window -0.7,0.7,-0.7,0.7
+# the .vtu of a curved mesh: Lagrange quadrilaterals (type 70) of degree 3 on the map, so no point
+# lies inside the cylinder (the straight export's chord points would)
+meshconvert -q "$T/c3.msh" -o "$T/c3.vtu"
+python3 - "$T/c3.vtu" <<'PY'
+import math, re, sys
+t = open(sys.argv[1]).read()
+pts = re.search(r'<Points>\s*<DataArray[^>]*>(.*?)</DataArray>', t, re.S).group(1).split()
+xy = [(float(pts[i]), float(pts[i + 1])) for i in range(0, len(pts), 3)]
+types = re.search(r'Name="types"[^>]*>(.*?)</DataArray>', t, re.S).group(1).split()
+assert set(types) == {"70"}, set(types)
+assert len(xy) == 16 * len(types), (len(xy), len(types))
+r = min(math.hypot(x, y) for x, y in xy)
+assert r > 0.5 - 1e-12, r
+PY
+
+# --- a 2-step adaptive L_p-CVT loop on the true geometry (p = 2)
+make -s -f "$S/Makefile.cases" loop CASE="$C" MESH="$M" P=2 METHOD=lpcvt STEPS=2 \
+  GEOMETRY="$G" OUT="$T/loop" PICTURES=no BIN="${BIN:-$(dirname "$(command -v dgsolve)")}" >"$T/loop.log" 2>&1 \
+  || { cat "$T/loop.log"; fail "loop"; }
+# every vertex on the circle; every curved-edge node too, except the (q - 1 = 1) edge node of
+# each edge the curving left straight (--straight-fallback: a sliver cell; counted in the report)
+for k in 0 1 2; do
+  if [ $k = 0 ]; then r="$T/loop/step-0/start/next-curved.json"; else r="$T/loop/step-$((k - 1))/next-curved.json"; fi
+  straight=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['curving']['straight_edges'])" "$r")
+  [ "$straight" -le 2 ] || fail "step-$k: $straight boundary edges left straight"
+  on_circle "$T/loop/step-$k/mesh.msh" "$straight"
+  on_circle "$T/loop/step-$k/straight.msh"
+  python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['geometric_order'] == 2, r['geometric_order']" "$T/loop/step-$k/sol.json"
+done
+python3 - "$T/loop/convergence.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+e = [float(r["l2_error"]) for r in rows]
+assert len(rows) == 3 and e[2] < 0.1 * e[0], e
+PY
+echo "geometry: OK"
