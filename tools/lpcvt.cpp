@@ -38,7 +38,11 @@ int main(int argc, char** argv) {
   auto& app = tool.app();
   app.add_option("FRAME", in, "Background mesh with the cell field Vinv (.msh)")->check(CLI::ExistingFile);
   app.add_option("-o,--output", out, "Output triangle mesh (.msh); report beside it as .json")->required();
-  app.add_option("--seed", opt.seed, "Random seed of the interior points")->capture_default_str();
+  app.add_option("--seed", opt.seed, "Random seed of the start: the points of --init density|uniform, the moves of "
+                 "--jitter (the lattice start without --jitter has no randomness)")->capture_default_str();
+  app.add_option("--jitter", opt.start_jitter, "Lattice start: move each interior point by up to this many target "
+                 "edges (in the metric) at random (--seed); 0 = the lattice as built")
+      ->capture_default_str()->check(CLI::Range(0.0, 10.0));
   app.add_option("--lp-exponent", opt.p, "L_p exponent p of the energy (eq. 4.1) and of eq. 4.12")
       ->capture_default_str()->check(CLI::Range(2.0, 32.0));
   app.add_option("--scale", job.scale, "Metric scale: M_eff = scale * M, M in the quadapt convention (default 0.25; 1 for --analytic)");

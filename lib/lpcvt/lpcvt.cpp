@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include <algorithm>
+#include <random>
 #include <chrono>
 #include <memory>
 #include <cmath>
@@ -17,6 +18,26 @@
 #include "lpcvt/triangulate.hpp"
 
 namespace quadapt::lpcvt {
+
+namespace {
+
+// LpcvtOptions::start_jitter: x += M^-1 u, u uniform in the disk of radius r (metric units), the
+// metric M of the background cell at x; moves leaving the domain are not made.
+void jitter_start(const Background& bg, std::vector<Vec2>& pts, double r, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  int hint = -1;
+  for (Vec2& x : pts) {
+    const double rho = r * std::sqrt(U(rng)), phi = 2 * M_PI * U(rng);
+    const int c = bg.locate(x, hint);
+    if (c < 0) continue;
+    hint = c;
+    const Vec2 y = x + bg.cell(c).M.inverse() * Vec2(rho * std::cos(phi), rho * std::sin(phi));
+    if (bg.locate(y, c) >= 0) x = y;
+  }
+}
+
+}  // namespace
 
 namespace {
 std::string fmt(const char* f, double a) {
@@ -125,6 +146,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
       if (opt.seed_mode == SeedMode::Lattice) {
         seeds = lattice_points(*lbg, sites, opt.lattice_delta, 4 * n0 + 100);
         lrec->start_points = static_cast<int>(seeds.size()) + nfixed;
+        if (opt.start_jitter > 0) jitter_start(*lbg, seeds, opt.start_jitter, opt.seed);
         sites.insert(sites.end(), seeds.begin(), seeds.end());
         if (opt.exact_count && opt.initial_points < 0)
           adjust_count(*lbg, sites, nfixed, bnd.segments, nfixed + target_interior, smo);

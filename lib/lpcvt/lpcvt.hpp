@@ -50,6 +50,10 @@ struct LpcvtOptions {
   bool multilevel = false;      ///< multilevel start (above); the coarsest level uses seed_mode
   int coarse_points = 250;      ///< multilevel: interior points of the coarsest level, at least
   double lattice_delta = 0.75;   ///< SeedMode::Lattice: rejection distance (metric units)
+  /// SeedMode::Lattice: each interior start point moved by M_eff^-1 u, u uniform in the disk of
+  /// this radius (metric units: target edges), drawn from `seed` in point order; a move that leaves
+  /// the domain is not made. 0: the lattice as built (then `seed` changes nothing).
+  double start_jitter = 0;
   /// The domain's true boundary (docs/curved.md): boundary points on its curves
   /// (geometry_boundary.hpp) instead of the background mesh's polygon, and its physical names as
   /// the output's boundary groups. Not owned; nullptr: the background's boundary.

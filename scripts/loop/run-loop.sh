@@ -28,7 +28,7 @@ die() { echo "loop: error: $*" >&2; exit 2; }
 
 # The one set of loop defaults (Makefile.cases passes only what the user sets).
 CASE="" MESH="" P="" METHOD="" MODE="" STEPS="6" GROWTH="1.5" OUT="" MAXDOFS="0" FRACTION="0.3" FF_BY=""
-SEED="1" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0 GEOMETRY="" ORDER=""
+SEED="1" JITTER="0" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0 GEOMETRY="" ORDER=""
 while [ $# -gt 0 ]; do
   opt="$1"
   case "$opt" in
@@ -40,7 +40,7 @@ while [ $# -gt 0 ]; do
     --case) CASE="$val" ;; --mesh) MESH="$val" ;; --p) P="$val" ;; --method) METHOD="$val" ;;
     --mode) MODE="$val" ;; --steps) STEPS="$val" ;; --growth) GROWTH="$val" ;; --out) OUT="$val" ;;
     --maxdofs) MAXDOFS="$val" ;; --fraction) FRACTION="$val" ;; --ff-by) FF_BY="$val" ;;
-    --seed) SEED="$val" ;; --smooth-bamg) SMOOTH_BAMG="$val" ;; --pictures) PICTURES="$val" ;;
+    --seed) SEED="$val" ;; --jitter) JITTER="$val" ;; --smooth-bamg) SMOOTH_BAMG="$val" ;; --pictures) PICTURES="$val" ;;
     --window) WINDOW="$val" ;; --thesis-case) THESIS_KEY="$val" ;;
     --geometry) GEOMETRY="$val" ;; --order) ORDER="$val" ;;
     *) die "unknown option $opt (see docs/loop.md)" ;;
@@ -80,6 +80,7 @@ is_num "$MAXDOFS" || die "MAXDOFS='$MAXDOFS': must be a non-negative number (0 =
 is_num "$FRACTION" && "$PY" -c "import sys; f=float('$FRACTION'); sys.exit(0 if 0 < f <= 1 else 1)" \
   || die "FRACTION='$FRACTION': must be in (0, 1]"
 is_uint "$SEED" || die "SEED='$SEED': must be a non-negative integer"
+is_num "$JITTER" || die "JITTER='$JITTER': must be a non-negative number (lpcvt --jitter, target edges)"
 [ -n "$OUT" ] || die "OUT is not set (the run directory)"
 case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
@@ -147,8 +148,10 @@ flock -n 9 || die "another loop is running in $OUT"
 case_sum="$(sha256sum "$CASE" | cut -c1-16)"
 mesh_sum="$(sha256sum "$MESH" | cut -c1-16)"
 # STEPS and MAXDOFS only say where to stop: a finished run can be continued with more steps.
+jit=()  # JITTER joins the run's parameters only when used (older runs have none)
+[ "$JITTER" = 0 ] || jit=(jitter="$JITTER")
 msg="$(ctl params "$OUT/loop.json" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
-  method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" \
+  method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" ${jit[@]+"${jit[@]}"} \
   smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} 2>&1)" || die "$msg"
 
 name="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
@@ -293,7 +296,7 @@ while :; do
           size-solve "$d/shape.msh" --growth "$GROWTH" -o "$d/frame.msh"
       fi
       if [ "$METHOD" = lpcvt ]; then
-        run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED" ${geo[@]+"${geo[@]}"}
+        run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED" --jitter "$JITTER" ${geo[@]+"${geo[@]}"}
         # the tools' defaults: recombine matches in the metric of the frame lpcvt attached to
         # tri.msh (no node moves; docs/recombine.md)
         run_tool "$d" recombine "$d/quad.msh" "$d/tri.msh" -- recombine "$d/tri.msh" -o "$d/quad.msh"

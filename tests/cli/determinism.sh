@@ -20,6 +20,17 @@ for name in b big_a cc_long_name_here_x; do lpcvt -q frame.msh -o "$name.msh" --
 same_bytes b.msh big_a.msh
 same_bytes b.msh cc_long_name_here_x.msh
 
+# --seed: without --jitter the lattice start has no randomness (seeds 1 and 2 agree); with it the
+# seed decides the start: the same seed repeats, another seed gives another mesh
+lpcvt -q frame.msh -o s2.msh --seed 2 --threads 1
+same_bytes b.msh s2.msh
+lpcvt -q frame.msh -o j2.msh --seed 2 --jitter 0.25 --threads 1
+lpcvt -q frame.msh -o j2b.msh --seed 2 --jitter 0.25 --threads 2
+lpcvt -q frame.msh -o j3.msh --seed 3 --jitter 0.25 --threads 1
+same_bytes j2.msh j2b.msh
+if cmp -s j2.msh j3.msh; then fail "lpcvt --jitter 0.25: seeds 2 and 3 gave the same mesh"; fi
+if cmp -s j2.msh b.msh; then fail "lpcvt --jitter 0.25 --seed 2: the same mesh as without --jitter"; fi
+
 # run TAG THREADS: every mesh tool once, outputs named after TAG (the names differ on purpose)
 run() {
   local tag=$1 n=$2
