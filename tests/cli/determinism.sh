@@ -37,13 +37,14 @@ run() {
   mkdir -p "$tag"
   lpcvt -q frame.msh -o "$tag/tri-$tag.msh" --seed 1 --threads "$n"
   recombine -q "$tag/tri-$tag.msh" -o "$tag/quad-$tag.msh" --pairing --threads "$n"
+  recombine -q "$tag/tri-$tag.msh" -o "$tag/metric-$tag.msh" --threads "$n"  # the default mode (the loop uses it)
   quadsmooth -q "$tag/quad-$tag.msh" --frame frame.msh -o "$tag/smooth-$tag.msh" --threads "$n"
   if command -v ffbamg >/dev/null; then bamgquad -q frame.msh -o "$tag/bamg-$tag.msh" --threads "$n"; fi
 }
 run a 1
 run second_run_with_a_longer_name 1
 run c 2
-for t in tri quad smooth bamg; do
+for t in tri quad metric smooth bamg; do
   [ -e "a/$t-a.msh" ] || { [ $t = bamg ] && continue; fail "a/$t-a.msh missing"; }
   same_bytes "a/$t-a.msh" "second_run_with_a_longer_name/$t-second_run_with_a_longer_name.msh"
   same_bytes "a/$t-a.msh" "c/$t-c.msh"

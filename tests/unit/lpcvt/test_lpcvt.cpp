@@ -60,16 +60,22 @@ double saddle_alignment(const Background& bg, const LpcvtResult& r, double min_r
   return weight > 0 ? sum / weight : 90;
 }
 
-}  // namespace
-
-TEST_CASE("energy decreases monotonically within every cycle; split/merge settles") {
-  auto f = std::make_shared<SaddleMetric>();
-  Background bg = Background::analytic(saddle_square(8), f, 1.0);
+/// The thesis §6.1 set-up: 20 uniform random seeds, split/merge up to a metric edge of sqrt(2).
+LpcvtOptions saddle_options() {
   LpcvtOptions o;
   o.initial_points = 20;
   o.seed_mode = SeedMode::Uniform;
   o.split.lmin = 0;
   o.split.lmax = std::sqrt(2.0);
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("energy decreases monotonically within every cycle; split/merge settles") {
+  auto f = std::make_shared<SaddleMetric>();
+  Background bg = Background::analytic(saddle_square(8), f, 1.0);
+  LpcvtOptions o = saddle_options();
   o.max_cycles = 4;
   LpcvtResult r = run_lpcvt(bg, o);
   REQUIRE(r.history.size() > 10);
@@ -136,11 +142,7 @@ TEST_CASE("thesis §6.1: saddle metric (eq. 6.1), continuous and on a 16x16 back
   for (int sampled = 0; sampled < 2; ++sampled) {
     Mesh m = saddle_square(16);
     Background bg = sampled ? Background::sampled(m, *f, 1.0) : Background::analytic(m, f, 1.0);
-    LpcvtOptions o;
-    o.initial_points = 20;
-    o.seed_mode = SeedMode::Uniform;
-    o.split.lmin = 0;
-    o.split.lmax = std::sqrt(2.0);
+    LpcvtOptions o = saddle_options();
     LpcvtResult r = run_lpcvt(bg, o);
     check_valid(r, bg);
     AngleStats phys = triangle_angles(bg, r.mesh, false);
@@ -175,11 +177,7 @@ TEST_CASE("saddle metric (eq. 6.1) with 300 points: Voronoi edges follow the pri
   // metric).
   auto f = std::make_shared<SaddleMetric>();
   Background bg = Background::analytic(saddle_square(16), f, 2.0);
-  LpcvtOptions o;
-  o.initial_points = 20;
-  o.seed_mode = SeedMode::Uniform;
-  o.split.lmin = 0;
-  o.split.lmax = std::sqrt(2.0);
+  LpcvtOptions o = saddle_options();
   LpcvtResult r = run_lpcvt(bg, o);
   check_valid(r, bg);
   const AlignmentStats all = voronoi_alignment(bg, r.sites, r.nfixed, true);
