@@ -66,7 +66,7 @@ void Background::build(const Mesh& m) {
     if (cl.nv != 3 && cl.nv != 4) throw InputError("", "background " + cell_label(m, c) + " is neither a triangle nor a quad");
     for (int k = 0; k < cl.nv; ++k)
       if (cl.v[k] < 0 || cl.v[k] >= m.num_nodes())
-        throw InputError("", "background " + cell_label(m, c) + " has a node index out of range");
+        throw InputError("", "background cell " + number_text(c) + " has a node index out of range");
     std::array<Vec2, 4> v;
     for (int k = 0; k < cl.nv; ++k) v[k] = m.nodes[cl.v[k]];
     double a = cell_area(m, c);

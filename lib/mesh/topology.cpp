@@ -69,8 +69,9 @@ Topology build_topology(const Mesh& m) {
   std::map<EdgeKey, bool> used;
   for (auto& [k, hs] : edges) {
     if (hs.size() > 2)
-      throw InputError("mesh", "the edge between nodes " + number_text(k.first) + " and " + number_text(k.second) + " " +
-                                   point_text(m.nodes[k.first]) + "-" + point_text(m.nodes[k.second]) + " is shared by " + std::to_string(hs.size()) + " cells");
+      throw InputError("mesh", "the edge between nodes " + number_text(k.first) + " " + point_text(m.nodes[k.first]) +
+                                   " and " + number_text(k.second) + " " + point_text(m.nodes[k.second]) +
+                                   " is shared by " + std::to_string(hs.size()) + " cells");
     if (hs.size() == 2) {
       const HalfEdge &h0 = hs[0], &h1 = hs[1];
       if (h0.from == h1.from)

@@ -67,7 +67,7 @@ void require_triangulation(const Mesh& m, const std::string& path) {
       if (m.cells[c].v[i] < 0 || m.cells[c].v[i] >= m.num_nodes())
         throw InputError(path, "cell " + number_text(c) + " refers to a missing node");
     if (!(cell_area(m, c) > 0))
-      throw InputError(path, "triangle " + cell_label(m, c).substr(5) + " is inverted or degenerate (area " +
+      throw InputError(path, cell_label(m, c) + " is an inverted or degenerate triangle (area " +
                                  sci(cell_area(m, c)) + ")");
   }
   std::vector<EdgeNodes> fe;

@@ -56,8 +56,8 @@ Mesh split_to_all_quads(const Mesh& m) {
   for (const auto& e : m.boundary) {
     auto it = mid.find(edge_key(e.v[0], e.v[1]));
     if (it == mid.end())
-      throw InputError("mesh: boundary edge between nodes " + number_text(e.v[0]) + " and " + number_text(e.v[1]) + " " +
-                       point_text(m.nodes[e.v[0]]) + "-" + point_text(m.nodes[e.v[1]]) + " is not an edge of any cell");
+      throw InputError("mesh: the boundary edge between nodes " + number_text(e.v[0]) + " " + point_text(m.nodes[e.v[0]]) +
+                       " and " + number_text(e.v[1]) + " " + point_text(m.nodes[e.v[1]]) + " is not an edge of any cell");
     out.boundary.push_back({{e.v[0], it->second}, e.group});
     out.boundary.push_back({{it->second, e.v[1]}, e.group});
   }
