@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Determinism (issue #16 item 5): for a given input, options and seed, lpcvt, recombine,
 # quadsmooth, bamgquad and a 3-step lpcvt loop give byte-identical meshes across two runs,
-# different output names and 1 vs 2 threads. (lpcvt gave a different mesh per output name:
-# its Delaunay update compared face addresses.) Reports are compared without their timing,
-# memory, command and path fields.
+# different output names and 1, 2 and 4 threads (the loop: 1 vs 2). (lpcvt gave a different
+# mesh per output name: its Delaunay update compared face addresses.) Reports are compared
+# without their timing, memory, command and path fields.
 set -euo pipefail
 S=$QUADAPT_SOURCE_DIR
 . "$S/tests/cli/lib/assert.sh"
@@ -44,10 +44,12 @@ run() {
 run a 1
 run second_run_with_a_longer_name 1
 run c 2
+run d 4
 for t in tri quad metric smooth bamg; do
   [ -e "a/$t-a.msh" ] || { [ $t = bamg ] && continue; fail "a/$t-a.msh missing"; }
   same_bytes "a/$t-a.msh" "second_run_with_a_longer_name/$t-second_run_with_a_longer_name.msh"
   same_bytes "a/$t-a.msh" "c/$t-c.msh"
+  same_bytes "a/$t-a.msh" "d/$t-d.msh"
 done
 python3 - a/tri-a.json c/tri-c.json <<'PY'
 import json, sys
@@ -72,4 +74,4 @@ for f in $(cd loop1 && find . -name '*.msh' | sort); do
   count=$((count + 1))
 done
 [ $count -ge 12 ] || fail "only $count meshes in the loop"
-echo "ok: byte-identical meshes (tools: 2 runs, 2 names, 1 vs 2 threads; loop: $count meshes, 1 vs 2 threads)"
+echo "ok: byte-identical meshes (tools: 2 runs, 2 names, 1, 2 and 4 threads; loop: $count meshes, 1 vs 2 threads)"
