@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Determinism (issue #16 item 5): for a given input, options and seed, lpcvt, recombine,
-# quadsmooth, bamgquad and a 3-step lpcvt loop give byte-identical meshes across two runs,
+# quadsmooth, bamgquad (dgsolve, adjoint, estimate-frame, size-solve, refine: 1, 2, 4 threads)
+# and a 3-step lpcvt loop give byte-identical meshes across two runs,
 # different output names and 1, 2 and 4 threads (the loop: 1 vs 2). (lpcvt gave a different
 # mesh per output name: its Delaunay update compared face addresses.) Reports are compared
 # without their timing, memory, command and path fields.
@@ -61,6 +62,16 @@ def strip(x):
 a, b = (strip(json.load(open(f))) for f in sys.argv[1:])
 if a != b: sys.exit("FAIL: lpcvt reports differ beyond timing fields")
 PY
+
+# the solver and the other mesh tools at 1, 2 and 4 threads
+for n in 1 2 4; do
+  dgsolve -q "$E/meshes/square16.msh" -c "$E/cases/smooth.json" -p 2 -o "dg$n.msh" --threads $n
+  adjoint -q "dg$n.msh" -c "$E/cases/smooth.json" -o "adj$n.msh" --threads $n
+  estimate-frame -q "dg$n.msh" -o "ef$n.msh" --threads $n
+  size-solve -q shape.msh --complexity 3000 -o "ss$n.msh" --threads $n
+  refine -q shape.msh --by B --fraction 0.3 -o "ref$n.msh" --threads $n
+done
+for t in dg adj ef ss ref; do same_bytes "${t}1.msh" "${t}2.msh"; same_bytes "${t}1.msh" "${t}4.msh"; done
 
 # a 3-step loop, twice (1 and 2 threads): every step's meshes identical
 for n in 1 2; do
