@@ -107,7 +107,9 @@ void apply_option_ranges(const std::string& tool, CLI::App& app) {
     if (opt->get_type_size() == 0) continue;  // a flag
     replace_cli11_checks(opt);
     const std::string name = opt->get_lnames().empty() ? "" : "--" + opt->get_lnames().front();
-    if (opt->get_type_name() == "FLOAT") {
+    // "FLOAT", or "FLOAT:POSITIVE", "FLOAT:FLOAT in [2 - 32]" once a tool attached a check (whose
+    // comparisons a NaN passes, and an overflowing 1e400 = inf passes a lower bound)
+    if (opt->get_type_name().rfind("FLOAT", 0) == 0) {
       opt->check(CLI::Validator(
           [](std::string& s) {
             double v;

@@ -10,6 +10,8 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "mesh/label.hpp"
 #include "mesh/curved.hpp"
 
 namespace quadapt {
@@ -151,9 +153,8 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
         double det = I.geo[c].jac(I.gv.x[q1], I.gv.x[q2], t1, t2);
         if (!(det > 0)) {
           Vec2 ctr = I.geo[c].a0;
-          throw InputError("mesh: cell " + std::to_string(c) + " near (" + std::to_string(ctr.x()) + ", " +
-                           std::to_string(ctr.y()) + ") is inverted or degenerate (Jacobian " +
-                           std::to_string(det) + ")");
+          throw InputError("mesh: cell " + number_text(c) + " near " + point_text(ctr) +
+                           " is inverted or degenerate (Jacobian " + sci(det) + ")");
         }
         a += I.gv.w[q1] * I.gv.w[q2] * det;
       }

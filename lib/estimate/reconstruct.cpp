@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "mesh/label.hpp"
 
 namespace quadapt {
 
@@ -104,7 +105,7 @@ PatchPolynomial PatchReconstructor::reconstruct(int cell, const std::vector<int>
   for (int c : patch)
     for (int k = 0; k < mesh_.cells[c].nv; ++k)
       H = std::max(H, (mesh_.nodes[mesh_.cells[c].v[k]] - poly.center).norm());
-  if (!(H > 0)) throw NumericalError("reconstruction: degenerate patch around cell " + std::to_string(cell));
+  if (!(H > 0)) throw NumericalError("reconstruction: degenerate patch around " + cell_label(mesh_, cell));
   poly.scale = H;
 
   const int nm = static_cast<int>(exps_.size());
@@ -134,7 +135,7 @@ PatchPolynomial PatchReconstructor::reconstruct(int cell, const std::vector<int>
   Eigen::HouseholderQR<Eigen::MatrixXd> qr(G);
   const auto R = qr.matrixQR().topRows(nm).diagonal().cwiseAbs();
   if (!(R.minCoeff() > 1e-13 * R.maxCoeff()))
-    throw NumericalError("reconstruction: rank-deficient H1 problem on the patch of cell " + std::to_string(cell));
+    throw NumericalError("reconstruction: rank-deficient H1 problem on the patch of " + cell_label(mesh_, cell));
   poly.coeffs = qr.solve(f);
   return poly;
 }

@@ -5,7 +5,9 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "io/msh.hpp"
+#include "mesh/label.hpp"
 
 namespace quadapt {
 
@@ -13,13 +15,6 @@ namespace {
 
 // Target cells per unit metric area |det M| (quadapt): a cell has area (2h1)(2h2) = 4 / |det M|.
 constexpr double kCellsPerMetricArea = 0.25;
-
-std::string where(const Mesh& m, int c) {
-  const Vec2 g = cell_centroid(m, c);
-  std::ostringstream os;
-  os << "cell " << c << " (centroid " << g.x() << ", " << g.y() << ")";
-  return os.str();
-}
 
 }  // namespace
 
@@ -118,10 +113,10 @@ Frame frame_from_mesh(const Mesh& m, const std::string& path, std::optional<Size
   for (int c = 0; c < m.num_cells(); ++c) {
     Mat2 M;
     M << (*f)(c, 0), (*f)(c, 1), (*f)(c, 3), (*f)(c, 4);
-    if (!M.allFinite()) throw InputError(path, "non-finite frame \"Vinv\" in " + where(m, c));
+    if (!M.allFinite()) throw InputError(path, "non-finite frame \"Vinv\" in " + cell_label(m, c));
     const double nrm = M.squaredNorm();
     if (!(nrm > 0) || !(std::abs(M.determinant()) > 1e-12 * nrm))
-      throw InputError(path, "singular frame \"Vinv\" (det M = " + std::to_string(M.determinant()) + ") in " + where(m, c));
+      throw InputError(path, "singular frame \"Vinv\" (det M = " + sci(M.determinant()) + ") in " + cell_label(m, c));
     fr.M[c] = k * M;
   }
   fr.mesh = m;

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "frame/frame.hpp"
 #include "fem/quadrature.hpp"
+#include "mesh/label.hpp"
 #include "mesh/topology.hpp"
 
 namespace quadapt::lpcvt {
@@ -14,13 +15,6 @@ namespace quadapt::lpcvt {
 namespace {
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-std::string where(const Mesh& m, int c) {
-  Vec2 g = cell_centroid(m, c);
-  std::ostringstream os;
-  os << "cell " << c << " (centroid " << g.x() << ", " << g.y() << ")";
-  return os.str();
-}
 
 }  // namespace
 
@@ -69,21 +63,21 @@ void Background::build(const Mesh& m) {
   for (int c = 0; c < m.num_cells(); ++c) {
     first_cell_[c] = static_cast<int>(cells_.size());
     const Cell& cl = m.cells[c];
-    if (cl.nv != 3 && cl.nv != 4) throw InputError("", "background " + where(m, c) + " is neither a triangle nor a quad");
+    if (cl.nv != 3 && cl.nv != 4) throw InputError("", "background " + cell_label(m, c) + " is neither a triangle nor a quad");
     for (int k = 0; k < cl.nv; ++k)
       if (cl.v[k] < 0 || cl.v[k] >= m.num_nodes())
-        throw InputError("", "background cell " + std::to_string(c) + " has a node index out of range");
+        throw InputError("", "background cell " + number_text(c) + " has a node index out of range");
     std::array<Vec2, 4> v;
     for (int k = 0; k < cl.nv; ++k) v[k] = m.nodes[cl.v[k]];
     double a = cell_area(m, c);
     if (!(a > 1e-14 * diam * diam))
-      throw InputError("", "background " + where(m, c) + (a < 0 ? " is inverted (clockwise)" : " is degenerate (zero area)"));
+      throw InputError("", "background " + cell_label(m, c) + (a < 0 ? " is inverted (clockwise)" : " is degenerate (zero area)"));
     int reflex = -1;
     for (int k = 0; k < cl.nv; ++k) {
       double t = cross(v[k] - v[(k + cl.nv - 1) % cl.nv], v[(k + 1) % cl.nv] - v[k]);
       if (t <= 0) {
         if (reflex >= 0 || cl.nv == 3)
-          throw InputError("", "background " + where(m, c) + " is inverted or self-intersecting");
+          throw InputError("", "background " + cell_label(m, c) + " is inverted or self-intersecting");
         reflex = k;
       }
     }

@@ -27,12 +27,6 @@ std::uint64_t directed_edge_key(int a, int b) {
 }
 std::uint64_t edge_key(int a, int b) { return a < b ? directed_edge_key(a, b) : directed_edge_key(b, a); }
 
-std::string point_text(const Vec2& p) {
-  std::ostringstream s;
-  s << "(" << p.x() << ", " << p.y() << ")";
-  return s.str();
-}
-
 std::vector<EdgeNodes> free_edges(const Mesh& m, bool strict) {
   // directed edge -> count; undirected -> count
   std::unordered_map<std::uint64_t, int> directed, undirected;  // edge key -> uses

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/label.hpp"
 #include "mesh/mesh.hpp"
 
 namespace quadapt {
@@ -28,8 +29,6 @@ using EdgeNodes = std::array<int, 2>;
 /// Keys of the directed edge a -> b and of the undirected edge {a, b} (maps of edges).
 std::uint64_t directed_edge_key(int a, int b);
 std::uint64_t edge_key(int a, int b);
-/// "(x, y)": a point in messages.
-std::string point_text(const Vec2& p);
 
 /// Edges used by exactly one cell (conforming meshes: a hanging node's long edge counts as
 /// free), oriented as in that cell (the cell on their left when cells are counter-clockwise),

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "mesh/boundary.hpp"
 #include "mesh/curved.hpp"
 
@@ -210,8 +211,8 @@ CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const
   st.min_scaled_jacobian = sj.min;
   st.worst_cell = sj.cell;
   if (sj.min <= 0)
-    throw NumericalError(path + ": curving the boundary cells folds cell " + std::to_string(sj.cell) +
-                         " (minimum scaled Jacobian " + std::to_string(sj.min) +
+    throw NumericalError(path + ": curving the boundary cells folds " + cell_label(m, sj.cell) +
+                         " (minimum scaled Jacobian " + sci(sj.min) +
                          "): the cell is too coarse along the curve; refine "
                          "there or lower --order");
   return st;

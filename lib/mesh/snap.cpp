@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "mesh/boundary.hpp"
 
 namespace quadapt {
@@ -56,8 +57,8 @@ SnapStats snap_once(Mesh& m, const BoundaryGeometry& g, const std::string& path,
     Vec2 p = g.closest_point(cs, m.nodes[v], &k);
     const double d = (p - m.nodes[v]).norm();
     if (d > 0.5 * node_edge[v])
-      throw InputError(path, "boundary node " + std::to_string(v) + " at " + point_text(m.nodes[v]) + " is " +
-                                 std::to_string(d) + " from curve '" + g.curves()[k].name + "' of " + g.source() +
+      throw InputError(path, "boundary node " + number_text(v) + " at " + point_text(m.nodes[v]) + " is " +
+                                 sci(d) + " from curve '" + g.curves()[k].name + "' of " + g.source() +
                                  ": the mesh is not a mesh of that geometry");
     if (d > 0) ++s.moved;
     s.max_move = std::max(s.max_move, d);
@@ -134,7 +135,7 @@ SnapStats snap_once(Mesh& m, const BoundaryGeometry& g, const std::string& path,
     if (!touched) continue;
     for (int i = 0; i < cell.nv; ++i)
       if (turn(before, cell, i) > 0 && turn(m.nodes, cell, i) <= 0)
-        throw NumericalError(path + ": snapping the boundary to " + g.source() + " inverts cell " + std::to_string(c) +
+        throw NumericalError(path + ": snapping the boundary to " + g.source() + " inverts cell " + number_text(c) +
                              " at " + point_text(before[cell.v[i]]) +
                              " (the cell is thinner than the curve's deviation from its chord)");
   }

@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "mesh/label.hpp"
 
 namespace quadapt {
 
@@ -68,12 +69,13 @@ Topology build_topology(const Mesh& m) {
   std::map<EdgeKey, bool> used;
   for (auto& [k, hs] : edges) {
     if (hs.size() > 2)
-      throw InputError("mesh", "edge (" + std::to_string(k.first) + ", " + std::to_string(k.second) +
-                                   ") is shared by " + std::to_string(hs.size()) + " cells");
+      throw InputError("mesh", "the edge between nodes " + number_text(k.first) + " " + point_text(m.nodes[k.first]) +
+                                   " and " + number_text(k.second) + " " + point_text(m.nodes[k.second]) +
+                                   " is shared by " + std::to_string(hs.size()) + " cells");
     if (hs.size() == 2) {
       const HalfEdge &h0 = hs[0], &h1 = hs[1];
       if (h0.from == h1.from)
-        throw InputError("mesh", "cells " + std::to_string(h0.cell) + " and " + std::to_string(h1.cell) +
+        throw InputError("mesh", "cells " + number_text(h0.cell) + " and " + number_text(h1.cell) +
                                      " overlap or have opposite orientation");
       Face f = make_face(m, h0.cell, h0.edge, 0, 1, m.nodes[h0.from], m.nodes[h0.to]);
       f.cell[1] = h1.cell;
@@ -117,8 +119,8 @@ Topology build_topology(const Mesh& m) {
         f.cell[1] = fine->cell;
         f.local_edge[1] = fine->edge;
         if (fine->to != (first ? coarse.from : h))
-          throw InputError("mesh", "cells " + std::to_string(coarse.cell) + " and " +
-                                       std::to_string(fine->cell) + " have opposite orientation");
+          throw InputError("mesh", "cells " + number_text(coarse.cell) + " and " +
+                                       number_text(fine->cell) + " have opposite orientation");
         f.s_a[1] = 1;
         f.s_b[1] = 0;
         add(std::move(f));

@@ -8,6 +8,8 @@
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "mesh/label.hpp"
 #include "mesh/boundary.hpp"
 
 namespace quadapt {
@@ -63,10 +65,10 @@ void require_triangulation(const Mesh& m, const std::string& path) {
   for (int c = 0; c < m.num_cells(); ++c) {
     for (int i = 0; i < 3; ++i)
       if (m.cells[c].v[i] < 0 || m.cells[c].v[i] >= m.num_nodes())
-        throw InputError(path, "cell " + std::to_string(c) + " refers to a missing node");
+        throw InputError(path, "cell " + number_text(c) + " refers to a missing node");
     if (!(cell_area(m, c) > 0))
-      throw InputError(path, "triangle " + std::to_string(c) + " at " + point_text(cell_centroid(m, c)) +
-                                 " is inverted or degenerate (area " + std::to_string(cell_area(m, c)) + ")");
+      throw InputError(path, cell_label(m, c) + " is an inverted or degenerate triangle (area " +
+                                 sci(cell_area(m, c)) + ")");
   }
   std::vector<EdgeNodes> fe;
   try {

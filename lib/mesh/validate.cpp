@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "mesh/curved.hpp"
+#include "mesh/label.hpp"
 #include "mesh/topology.hpp"
 
 namespace quadapt {
@@ -16,23 +17,10 @@ namespace {
 using Key = std::pair<int, int>;
 Key key(int a, int b) { return a < b ? Key{a, b} : Key{b, a}; }
 
-std::string point(const Vec2& p) {
-  std::ostringstream s;
-  s.precision(6);
-  s << "(" << p.x() << ", " << p.y() << ")";
-  return s.str();
-}
-
 std::string list(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
   return s;
-}
-
-/// Cell numbers in messages are 1-based, in file order (= the element tag in files quadapt
-/// writes).
-std::string cell_label(const Mesh& m, int c) {
-  return "cell " + std::to_string(c + 1) + " (centroid " + point(cell_centroid(m, c)) + ")";
 }
 
 /// Geometric check of one cell: "" when valid, else the problem.
@@ -51,7 +39,7 @@ std::string cell_problem(const Mesh& m, int c) {
     Vec2 a = m.nodes[cell.v[(k + 1) % cell.nv]] - p;
     Vec2 b = m.nodes[cell.v[(k + cell.nv - 1) % cell.nv]] - p;
     double j = a.x() * b.y() - a.y() * b.x();
-    if (j < -tol) return "inverted: negative Jacobian at corner " + std::to_string(k + 1) + " " + point(p);
+    if (j < -tol) return "inverted: negative Jacobian at corner " + std::to_string(k + 1) + " " + point_text(p);
   }
   if (cell_area(m, c) <= tol) return "degenerate: zero area";
   for (int k = 0; k < cell.nv; ++k) {
@@ -59,7 +47,7 @@ std::string cell_problem(const Mesh& m, int c) {
     Vec2 a = m.nodes[cell.v[(k + 1) % cell.nv]] - p;
     Vec2 b = m.nodes[cell.v[(k + cell.nv - 1) % cell.nv]] - p;
     if (a.x() * b.y() - a.y() * b.x() <= tol)
-      return "degenerate: zero Jacobian at corner " + std::to_string(k + 1) + " " + point(p) + " (vertices in line)";
+      return "degenerate: zero Jacobian at corner " + std::to_string(k + 1) + " " + point_text(p) + " (vertices in line)";
   }
   return "";
 }
@@ -73,7 +61,7 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
 
   for (int i = 0; i < nn; ++i)
     if (!std::isfinite(m.nodes[i].x()) || !std::isfinite(m.nodes[i].y()))
-      fail("node " + std::to_string(i + 1) + " has a non-finite coordinate " + point(m.nodes[i]));
+      fail("node " + std::to_string(i + 1) + " has a non-finite coordinate " + point_text(m.nodes[i]));
   for (int c = 0; c < nc; ++c) {
     const Cell& cell = m.cells[c];
     if (cell.nv != 3 && cell.nv != 4) fail("cell " + std::to_string(c + 1) + " has " + std::to_string(cell.nv) + " vertices");
@@ -151,7 +139,7 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
   for (const Face& f : topo.faces) {
     if (!f.is_boundary()) {
       if (!opt.allow_hanging_nodes && !f.is_conforming())
-        fail("the mesh is non-conforming (hanging node near " + point(0.5 * (f.a + f.b)) +
+        fail("the mesh is non-conforming (hanging node near " + point_text(0.5 * (f.a + f.b)) +
              "), but this tool needs a conforming mesh");
       continue;
     }
@@ -177,7 +165,7 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
         double lo = std::max(0.0, std::min(s0, s1)), hi = std::min(1.0, std::max(s0, s1));
         if (hi - lo > 1e-9)
           fail("cells " + std::to_string(fi.cell[0] + 1) + " and " + std::to_string(fj.cell[0] + 1) +
-               " meet along " + point(0.5 * (fi.a + fi.b)) +
+               " meet along " + point_text(0.5 * (fi.a + fi.b)) +
                " without sharing an edge: only conforming or 2:1 (one hanging node) interfaces are supported");
       }
     }
@@ -187,7 +175,7 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
   for (const BoundaryEdge& be : m.boundary) {
     const Key k = key(be.v[0], be.v[1]);
     if (free_keys.count(k)) continue;
-    fail("boundary edge " + point(m.nodes[be.v[0]]) + " - " + point(m.nodes[be.v[1]]) + " of '" + m.groups[be.group].name +
+    fail("boundary edge " + point_text(m.nodes[be.v[0]]) + " - " + point_text(m.nodes[be.v[1]]) + " of '" + m.groups[be.group].name +
          "' is not on the boundary of the mesh (" +
          (cell_keys.count(k) ? "it is an interior edge" : "it is not an edge of any cell") + ")");
   }

@@ -13,6 +13,7 @@
 #include "fem/basis.hpp"
 #include "mesh/boundary.hpp"
 #include "mesh/curved.hpp"
+#include "mesh/label.hpp"
 #include "plot/svg.hpp"
 
 namespace quadapt::plot {
@@ -122,14 +123,26 @@ std::pair<Vec2, Vec2> frame_vectors(const CellField& vinv, int c, SizeConvention
   try {
     return frame_axes(quadapt_factor(convention) * M);
   } catch (const NumericalError& e) {
-    throw NumericalError("cell " + std::to_string(c) + ": " + e.what());
+    throw NumericalError("cell " + number_text(c) + ": " + e.what());
   }
 }
 
 void check_plot_field(const Mesh& m, const std::string& field, const std::string& source) {
   if (field.empty()) return;
   if (const CellField* f = m.cell_field(field)) {
-    if (f->ncomp == 1 || f->ncomp == 9) return;
+    if (f->ncomp == 1) return;
+    if (f->ncomp == 9) {  // a frame: every cell's M must be invertible (no glyph is made up)
+      const SizeConvention convention = stated_convention(m, source);
+      for (int c = 0; c < m.num_cells(); ++c) {
+        try {
+          frame_vectors(*f, c, convention);
+        } catch (const NumericalError&) {
+          throw InputError(source, "field '" + field + "': the frame matrix M = V^-1 is singular or not finite in " +
+                                       cell_label(m, c));
+        }
+      }
+      return;
+    }
     throw InputError(source, "field '" + field + "' has " + std::to_string(f->ncomp) +
                                  " components; meshplot colours scalar fields and draws 9-component frames (Vinv)");
   }

@@ -81,8 +81,9 @@ struct MeshPlotSummary {
 /// the one the file states). Throws NumericalError when M is singular or not finite.
 std::pair<Vec2, Vec2> frame_vectors(const CellField& vinv, int c, SizeConvention convention = SizeConvention::Quadapt);
 
-/// Checks that `field` can be plotted on m (exists, scalar / DG / Vinv). Throws
-/// InputError("SOURCE: field 'X' ...") listing the available fields otherwise.
+/// Checks that `field` can be plotted on m (exists, scalar / DG / Vinv; a 9-component frame
+/// invertible in every cell). Throws InputError("SOURCE: field 'X' ...") listing the available
+/// fields, or naming the first cell (1-based) whose frame is singular or not finite.
 void check_plot_field(const Mesh& m, const std::string& field, const std::string& source);
 
 /// The picture as an SVG document.

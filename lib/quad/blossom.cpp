@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "mesh/label.hpp"
 #include "gmsh/gmsh_recombine.hpp"
 #include "quad/mesh_utils.hpp"
 
@@ -231,7 +232,7 @@ Mesh take_cleanup(const Mesh& tri, const GmshRecombined& ans, const std::vector<
       Vec2 p = out.nodes[cell.v[i]];
       Vec2 en = out.nodes[cell.v[(i + 1) % cell.nv]] - p, ep = out.nodes[cell.v[(i + cell.nv - 1) % cell.nv]] - p;
       if (!(cross2(en, ep) > 0))
-        throw ExternalError("Gmsh recombination produced an inverted or degenerate cell " + std::to_string(c));
+        throw ExternalError("Gmsh recombination produced an inverted or degenerate " + cell_label(out, c));
     }
   }
   return out;

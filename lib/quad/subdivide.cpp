@@ -4,6 +4,7 @@
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "mesh/label.hpp"
 
 namespace quadapt {
 
@@ -32,7 +33,7 @@ Mesh split_to_all_quads(const Mesh& m) {
   std::vector<std::array<int, 4>> mids(m.cells.size());
   for (size_t c = 0; c < m.cells.size(); ++c) {
     const Cell& cell = m.cells[c];
-    if (cell.nv != 3 && cell.nv != 4) throw InputError("mesh: cell " + std::to_string(c) + " is neither a triangle nor a quad");
+    if (cell.nv != 3 && cell.nv != 4) throw InputError("mesh: cell " + number_text(c) + " is neither a triangle nor a quad");
     for (int i = 0; i < cell.nv; ++i) mids[c][i] = midpoint(cell.v[i], cell.v[(i + 1) % cell.nv]);
   }
   out.cells.reserve(4 * m.cells.size());
@@ -55,8 +56,8 @@ Mesh split_to_all_quads(const Mesh& m) {
   for (const auto& e : m.boundary) {
     auto it = mid.find(edge_key(e.v[0], e.v[1]));
     if (it == mid.end())
-      throw InputError("mesh: boundary edge (" + std::to_string(e.v[0]) + ", " + std::to_string(e.v[1]) +
-                       ") is not an edge of any cell");
+      throw InputError("mesh: the boundary edge between nodes " + number_text(e.v[0]) + " " + point_text(m.nodes[e.v[0]]) +
+                       " and " + number_text(e.v[1]) + " " + point_text(m.nodes[e.v[1]]) + " is not an edge of any cell");
     out.boundary.push_back({{e.v[0], it->second}, e.group});
     out.boundary.push_back({{it->second, e.v[1]}, e.group});
   }

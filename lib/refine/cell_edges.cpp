@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "mesh/label.hpp"
 
 namespace quadapt {
 
@@ -42,9 +43,9 @@ void check_free_edges(const Mesh& m, const CellEdges& edges) {
       const double s = q.dot(d) / len2;
       const double off = std::abs(d.x() * q.y() - d.y() * q.x()) / std::sqrt(len2);
       if (g.to != f.to && s > 0 && s < 1 && off <= 1e-9 * std::sqrt(len2))
-        throw InputError("mesh", "edge " + std::to_string(f.edge) + " of cell " + std::to_string(f.cell) +
+        throw InputError("mesh", "edge " + number_text(f.edge) + " of " + cell_label(m, f.cell) +
                                      " is matched neither by one neighbour edge nor by two halves (cell " +
-                                     std::to_string(g.cell) + " lies along part of it): only conforming "
+                                     number_text(g.cell) + " lies along part of it): only conforming "
                                      "and 2:1 non-conforming meshes are supported");
     }
   }
@@ -66,7 +67,7 @@ CellEdges classify_cell_edges(const Mesh& m, const Topology& t) {
     for (int e = 0; e < cell.nv; ++e) {
       auto& ps = pieces[e];
       CellEdge& ce = out[c][e];
-      const std::string where = "cell " + std::to_string(c) + " edge " + std::to_string(e);
+      const std::string where = cell_label(m, c) + " edge " + number_text(e);
       if (ps.size() > 2)
         throw InputError("mesh", where + " is covered by " + std::to_string(ps.size()) +
                                      " faces (only conforming and 2:1 edges are supported)");

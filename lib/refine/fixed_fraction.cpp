@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "mesh/label.hpp"
 
 namespace quadapt {
 
@@ -30,7 +31,7 @@ std::vector<char> flag_largest_fraction(const std::vector<double>& indicator, do
   const int k = fraction_count(fraction, n);
   for (int c = 0; c < n; ++c)
     if (!std::isfinite(indicator[c]))
-      throw InputError("", "indicator of cell " + std::to_string(c) + " is " + num(indicator[c]));
+      throw InputError("", "indicator of cell " + number_text(c) + " is " + num(indicator[c]));
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
   auto larger = [&](int a, int b) {
@@ -60,8 +61,7 @@ std::vector<double> cell_indicator(const Mesh& m, const std::string& name, const
                                " values for " + std::to_string(m.num_cells()) + " cells");
   for (int c = 0; c < m.num_cells(); ++c)
     if (!std::isfinite(f->values[c]))
-      throw InputError(path, "field '" + name + "' is " + num(f->values[c]) + " in cell " +
-                                 std::to_string(c));
+      throw InputError(path, "field '" + name + "' is " + num(f->values[c]) + " in " + cell_label(m, c));
   return f->values;
 }
 

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "mesh/label.hpp"
 #include "refine/balance.hpp"
 
 namespace quadapt {
@@ -44,7 +45,7 @@ Mesh split_cells(const Mesh& m, const CellEdges& edges, const std::vector<char>&
       continue;
     }
     if (!cell.is_quad())
-      throw InputError("mesh", "cell " + std::to_string(c) + " is a triangle; refine splits quads only");
+      throw InputError("mesh", cell_label(m, c) + " is a triangle; refine splits quads only");
     int mid[4];
     for (int e = 0; e < 4; ++e) {
       const CellEdge& ce = edges[c][e];

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "mesh/label.hpp"
 #include "estimate/error_model.hpp"
 #include "frame/frame.hpp"
 #include "mesh/topology.hpp"
@@ -160,15 +161,15 @@ ShapeData read_shape(const Mesh& shape, const std::string& source) {
   if (auto* a2 = scalar_field(shape, "A2", false, source)) s.A2 = *a2;
   if (s.A1.empty() != s.A2.empty()) s.A1.clear(), s.A2.clear();
   for (int k = 0; k < nc; ++k) {
-    if (s.B[k] < 0) throw InputError(source, "field \"B\" is negative in cell " + std::to_string(k));
-    if (!(s.rho[k] > 0)) throw InputError(source, "field \"rho\" must be positive (cell " + std::to_string(k) + ")");
+    if (s.B[k] < 0) throw InputError(source, "field \"B\" is negative in " + cell_label(shape, k));
+    if (!(s.rho[k] > 0)) throw InputError(source, "field \"rho\" must be positive (" + cell_label(shape, k) + ")");
     if (!s.A1.empty() && (s.A1[k] < 0 || s.A2[k] < 0))
-      throw InputError(source, "fields \"A1\", \"A2\" must be >= 0 (cell " + std::to_string(k) + ")");
+      throw InputError(source, "fields \"A1\", \"A2\" must be >= 0 (" + cell_label(shape, k) + ")");
   }
   s.area.resize(nc);
   for (int k = 0; k < nc; ++k) {
     s.area[k] = std::abs(cell_area(shape, k));
-    if (!(s.area[k] > 0)) throw InputError(source, "cell " + std::to_string(k) + " has zero area");
+    if (!(s.area[k] > 0)) throw InputError(source, cell_label(shape, k) + " has zero area");
   }
   return s;
 }
@@ -327,7 +328,7 @@ void check_same_cells(const Mesh& shape, const Mesh& dwr, const std::string& dwr
   const double tol = 1e-8 * std::max(xmax - xmin, ymax - ymin);
   for (int k = 0; k < shape.num_cells(); ++k)
     if ((cell_centroid(shape, k) - cell_centroid(dwr, k)).norm() > tol)
-      throw InputError(dwr_source, "DWR file is on another mesh: cell " + std::to_string(k) +
+      throw InputError(dwr_source, "DWR file is on another mesh: cell " + number_text(k) +
                                        " has a different centroid than in the SHAPE mesh");
 }
 

@@ -14,6 +14,10 @@
 # each with its JSON report beside it (.json) and the tool's stderr in TOOL.log.
 # Resume: every tool writes atomically, and a tool is skipped when its output and report exist
 # and are not older than its inputs — an interrupted loop continues where it stopped.
+#
+# Exit status (docs/loop.md "Exit status", docs/exit-codes.md "Loops"): 0 finished; 1 stopped by a
+# failing step — the files of the earlier steps are saved and valid, rerunning resumes; 2 bad input
+# or options, nothing run; 128+N killed by signal N (Ctrl-C: 130), also resumable.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -202,7 +206,7 @@ run_tool() {
     echo "loop: error: step $(basename "$dir"): $logname failed (exit $rc):" >&2
     tail -n 5 "$dir/$logname.log" | sed 's/^/    /' >&2
     echo "  full log: $dir/$logname.log" >&2
-    exit 1
+    exit 1  # the EXIT trap says which steps are saved
   fi
   awk -v n="$name" -v s="$(basename "$dir")" -v t="$logname" -v ns="$((t1 - t0))" \
     'BEGIN { printf "[%s] %s: %-14s %7.2f s\n", n, s, t, ns / 1e9 }'
@@ -238,6 +242,25 @@ elif [ ! -s "$OUT/step-0/mesh.msh" ]; then link_into "$MESH" "$OUT/step-0/mesh.m
 
 k=0
 last=0
+finished=0
+# From here on the run directory holds finished steps: any failure stops the loop with status 1
+# (the steps before k are saved and valid; a rerun of the same command resumes at the first
+# missing file). A signal keeps its own status (128+N).
+stopped() {
+  local rc=$?
+  [ "$rc" -eq 0 ] && return 0
+  [ "$rc" -ge 128 ] && exit "$rc"
+  if [ -e "$OUT/loop.done" ] && [ "$finished" = 1 ]; then
+    echo "loop: the steps finished (loop.done) but what followed failed (status 1)" >&2
+    exit 1
+  fi
+  local saved="the files written so far"
+  [ "$k" -eq 1 ] && saved="step-0 and the files written so far"
+  [ "$k" -gt 1 ] && saved="step-0 .. step-$((k - 1)) and the files written so far"
+  echo "loop: stopped in step-$k (status 1): $saved in $OUT are valid; rerun the same command to resume" >&2
+  exit 1
+}
+trap stopped EXIT
 while :; do
   d="$OUT/step-$k"
   mkdir -p "$d"
@@ -322,6 +345,7 @@ done
 
 rows="$(ctl table "$OUT" --last $last)"
 echo "$last" > "$OUT/loop.done.tmp-$$" && mv -f "$OUT/loop.done.tmp-$$" "$OUT/loop.done"
+finished=1
 
 # ------------------------------------------------------------------ pictures (optional)
 if [ "$PICTURES" = yes ]; then

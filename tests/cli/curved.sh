@@ -8,7 +8,7 @@ set -euo pipefail
 S=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
-command -v gmsh >/dev/null || { echo "SKIPPED: gmsh not installed"; exit 0; }
+command -v gmsh >/dev/null || { echo "SKIPPED: gmsh not installed"; exit 77; }
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }

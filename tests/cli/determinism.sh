@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Determinism (issue #16 item 5): for a given input, options and seed, lpcvt, recombine,
-# quadsmooth, bamgquad and a 3-step lpcvt loop give byte-identical meshes across two runs,
-# different output names and 1 vs 2 threads. (lpcvt gave a different mesh per output name:
-# its Delaunay update compared face addresses.) Reports are compared without their timing,
-# memory, command and path fields.
+# quadsmooth, bamgquad (dgsolve, adjoint, estimate-frame, size-solve, refine: 1, 2, 4 threads)
+# and a 3-step lpcvt loop give byte-identical meshes across two runs,
+# different output names and 1, 2 and 4 threads (the loop: 1 vs 2). (lpcvt gave a different
+# mesh per output name: its Delaunay update compared face addresses.) Reports are compared
+# without their timing, memory, command and path fields.
 set -euo pipefail
 S=$QUADAPT_SOURCE_DIR
 . "$S/tests/cli/lib/assert.sh"
@@ -37,16 +38,19 @@ run() {
   mkdir -p "$tag"
   lpcvt -q frame.msh -o "$tag/tri-$tag.msh" --seed 1 --threads "$n"
   recombine -q "$tag/tri-$tag.msh" -o "$tag/quad-$tag.msh" --pairing --threads "$n"
+  recombine -q "$tag/tri-$tag.msh" -o "$tag/metric-$tag.msh" --threads "$n"  # the default mode (the loop uses it)
   quadsmooth -q "$tag/quad-$tag.msh" --frame frame.msh -o "$tag/smooth-$tag.msh" --threads "$n"
   if command -v ffbamg >/dev/null; then bamgquad -q frame.msh -o "$tag/bamg-$tag.msh" --threads "$n"; fi
 }
 run a 1
 run second_run_with_a_longer_name 1
 run c 2
-for t in tri quad smooth bamg; do
+run d 4
+for t in tri quad metric smooth bamg; do
   [ -e "a/$t-a.msh" ] || { [ $t = bamg ] && continue; fail "a/$t-a.msh missing"; }
   same_bytes "a/$t-a.msh" "second_run_with_a_longer_name/$t-second_run_with_a_longer_name.msh"
   same_bytes "a/$t-a.msh" "c/$t-c.msh"
+  same_bytes "a/$t-a.msh" "d/$t-d.msh"
 done
 python3 - a/tri-a.json c/tri-c.json <<'PY'
 import json, sys
@@ -58,6 +62,16 @@ def strip(x):
 a, b = (strip(json.load(open(f))) for f in sys.argv[1:])
 if a != b: sys.exit("FAIL: lpcvt reports differ beyond timing fields")
 PY
+
+# the solver and the other mesh tools at 1, 2 and 4 threads
+for n in 1 2 4; do
+  dgsolve -q "$E/meshes/square16.msh" -c "$E/cases/smooth.json" -p 2 -o "dg$n.msh" --threads $n
+  adjoint -q "dg$n.msh" -c "$E/cases/smooth.json" -o "adj$n.msh" --threads $n
+  estimate-frame -q "dg$n.msh" -o "ef$n.msh" --threads $n
+  size-solve -q shape.msh --complexity 3000 -o "ss$n.msh" --threads $n
+  refine -q shape.msh --by B --fraction 0.3 -o "ref$n.msh" --threads $n
+done
+for t in dg adj ef ss ref; do same_bytes "${t}1.msh" "${t}2.msh"; same_bytes "${t}1.msh" "${t}4.msh"; done
 
 # a 3-step loop, twice (1 and 2 threads): every step's meshes identical
 for n in 1 2; do
@@ -71,4 +85,4 @@ for f in $(cd loop1 && find . -name '*.msh' | sort); do
   count=$((count + 1))
 done
 [ $count -ge 12 ] || fail "only $count meshes in the loop"
-echo "ok: byte-identical meshes (tools: 2 runs, 2 names, 1 vs 2 threads; loop: $count meshes, 1 vs 2 threads)"
+echo "ok: byte-identical meshes (tools: 2 runs, 2 names, 1, 2 and 4 threads; loop: $count meshes, 1 vs 2 threads)"

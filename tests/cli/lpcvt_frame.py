@@ -7,7 +7,8 @@ L-shape) and per cell $ElementData "Vinv" = V^-1, V = R(theta) diag(h1, h2), 9 c
   lpcvt_frame.py OUT.msh --n 8 --h1 0.05 --h2 0.05 --theta 0 [--box x0 x1 y0 y1] [--lshape]
   --kind symmetric: M = R diag(1/h1, 1/h2) R^T (symmetric, same M^T M).
   --kind saddle: M = eq. 6.1 sampled at cell centres (times --factor).
-  --corrupt nan|singular|none: damage cell 0's frame (bad-input tests).
+  --corrupt nan|singular|none: damage one cell's frame (bad-input tests): the cell with element
+  tag --corrupt-cell K (default 1; tags are 1..cells in file order, rows from the bottom).
 """
 import argparse
 import math
@@ -26,6 +27,7 @@ def main():
     ap.add_argument("--factor", type=float, default=1.0)
     ap.add_argument("--philip", action="store_true", help="no $FrameConvention section (read as PHiLiP's sizes)")
     ap.add_argument("--corrupt", choices=["none", "nan", "singular", "nofield"], default="none")
+    ap.add_argument("--corrupt-cell", type=int, default=1)
     a = ap.parse_args()
     n = a.n
     x0, x1, y0, y1 = a.box
@@ -54,9 +56,9 @@ def main():
             m = [a.factor * t for t in m]
         frames.append(m)
     if a.corrupt == "nan":
-        frames[0] = [float("nan")] * 4
+        frames[a.corrupt_cell - 1] = [float("nan")] * 4
     elif a.corrupt == "singular":
-        frames[0] = [1.0, 2.0, 2.0, 4.0]
+        frames[a.corrupt_cell - 1] = [1.0, 2.0, 2.0, 4.0]
     with open(a.out, "w") as f:
         f.write("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n")
         f.write(f"$Nodes\n1 {len(nodes)} 1 {len(nodes)}\n2 1 0 {len(nodes)}\n")

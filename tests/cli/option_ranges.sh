@@ -28,6 +28,27 @@ expect_exit 2 "--threads: must be >= 0 (got -3)" refine m.msh --uniform -o x.msh
 case "$ERR" in *[0-9][0-9][0-9][0-9][0-9][0-9][0-9][0-9][0-9][0-9]*) fail "absurd bound printed: $ERR" ;; esac
 if [ -e x.msh ] || [ -e x.json ] || [ -e x.svg ]; then fail "an output was written"; fi
 
+# every floating-point option of every tool (read from --help): NaN and 1e400 (= inf) refused. The
+# finite check missed the options that carry a tool's own check ("FLOAT:POSITIVE", "FLOAT in
+# [2 - 32]"): lpcvt --lp-exponent nan, recombine --min-quality nan, quadsmooth --tolerance 1e400,
+# bamgquad --edge-factor 1e400 ran with exit 0.
+lpcvt -q frame.msh -o tri.msh
+declare -A RUN=([adjoint]="sol.msh -c $C -o x.msh" [bamgquad]="frame.msh -o x.msh" [dgsolve]="m.msh -c $C -p 1 -o x.msh"
+  [estimate-frame]="sol.msh -o x.msh" [lpcvt]="frame.msh -o x.msh" [meshconvert]="m.msh -o x.msh"
+  [meshplot]="m.msh -o x.svg" [meshquality]="m.msh --report x.json" [quadsmooth]="m.msh -o x.msh"
+  [recombine]="tri.msh -o x.msh" [refine]="shape.msh --by B -o x.msh" [size-solve]="shape.msh --complexity 2000 -o x.msh")
+checked=0
+for t in "${!RUN[@]}"; do
+  for o in $($t --help | grep -oE -- '--[a-z0-9-]+ FLOAT' | awk '{print $1}' | sort -u); do
+    for v in nan 1e400; do
+      expect_exit 2 "$o" $t ${RUN[$t]} $o $v -q
+      checked=$((checked + 1))
+    done
+  done
+done
+[ $checked -ge 60 ] || fail "only $checked floating-point option values checked"
+if [ -e x.msh ] || [ -e x.json ] || [ -e x.svg ]; then fail "an output was written"; fi
+
 # --threads 100000: clamped, exit 0, the effective count in the report
 for n in 100000; do
   dgsolve -q m.msh -c "$C" -p 1 -o t.msh --threads $n
@@ -42,4 +63,4 @@ for f in sys.argv[1:]:
     if not (1 <= r["threads"] <= limit): sys.exit("FAIL: %s threads %r > %d" % (f, r["threads"], limit))
     if r["options"]["threads"] != r["threads"]: sys.exit("FAIL: %s options.threads %r" % (f, r["options"]["threads"]))
 PY
-echo "ok: option ranges"
+echo "ok: option ranges ($checked non-finite floating-point option values refused)"

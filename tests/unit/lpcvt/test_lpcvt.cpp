@@ -34,16 +34,48 @@ double valence_share(const LpcvtResult& r, int v) {
   return v < static_cast<int>(h.size()) && tot ? double(h[v]) / tot : 0.0;
 }
 
-}  // namespace
+/// Length-weighted (metric length) mean angle, in degrees (0..45; random orientations: 22.5),
+/// between the Voronoi edges of r's free sites and the nearest principal direction of the saddle
+/// metric (eq. 6.1: M = I + 4 v v^T, v = (x, -y), eigenvectors v and (y, x)) at the edge's
+/// midpoint, over the edges where M is anisotropic: eigenvalue ratio 1 + 4 |y|^2 >= min_ratio.
+/// Computed here from the analytic metric, not by voronoi_alignment (which averages over the
+/// isotropic centre too, where no direction is preferred and any orientation scores 22.5).
+double saddle_alignment(const Background& bg, const LpcvtResult& r, double min_ratio, int* edges = nullptr) {
+  const nlohmann::json j = voronoi_json(bg, r.sites, r.nfixed);
+  SaddleMetric f;
+  double sum = 0, weight = 0;
+  int n = 0;
+  for (const auto& e : j["edges"]) {
+    const Vec2 a(e[0].get<double>(), e[1].get<double>()), b(e[2].get<double>(), e[3].get<double>());
+    const Vec2 mid = 0.5 * (a + b), u = b - a;
+    if (1 + 4 * mid.squaredNorm() < min_ratio || u.norm() == 0) continue;
+    const Vec2 v = Vec2(mid.x(), -mid.y()).normalized();
+    const double deg = std::acos(std::min(1.0, std::abs(u.normalized().dot(v)))) * 180 / M_PI;  // 0..90
+    const double w = (f.M(mid) * u).norm();
+    sum += w * std::min(deg, 90 - deg);
+    weight += w;
+    ++n;
+  }
+  if (edges) *edges = n;
+  return weight > 0 ? sum / weight : 90;
+}
 
-TEST_CASE("energy decreases monotonically within every cycle; split/merge settles") {
-  auto f = std::make_shared<SaddleMetric>();
-  Background bg = Background::analytic(saddle_square(8), f, 1.0);
+/// The thesis §6.1 set-up: 20 uniform random seeds, split/merge up to a metric edge of sqrt(2).
+LpcvtOptions saddle_options() {
   LpcvtOptions o;
   o.initial_points = 20;
   o.seed_mode = SeedMode::Uniform;
   o.split.lmin = 0;
   o.split.lmax = std::sqrt(2.0);
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("energy decreases monotonically within every cycle; split/merge settles") {
+  auto f = std::make_shared<SaddleMetric>();
+  Background bg = Background::analytic(saddle_square(8), f, 1.0);
+  LpcvtOptions o = saddle_options();
   o.max_cycles = 4;
   LpcvtResult r = run_lpcvt(bg, o);
   REQUIRE(r.history.size() > 10);
@@ -110,11 +142,7 @@ TEST_CASE("thesis §6.1: saddle metric (eq. 6.1), continuous and on a 16x16 back
   for (int sampled = 0; sampled < 2; ++sampled) {
     Mesh m = saddle_square(16);
     Background bg = sampled ? Background::sampled(m, *f, 1.0) : Background::analytic(m, f, 1.0);
-    LpcvtOptions o;
-    o.initial_points = 20;
-    o.seed_mode = SeedMode::Uniform;
-    o.split.lmin = 0;
-    o.split.lmax = std::sqrt(2.0);
+    LpcvtOptions o = saddle_options();
     LpcvtResult r = run_lpcvt(bg, o);
     check_valid(r, bg);
     AngleStats phys = triangle_angles(bg, r.mesh, false);
@@ -128,7 +156,9 @@ TEST_CASE("thesis §6.1: saddle metric (eq. 6.1), continuous and on a 16x16 back
     CHECK(r.cycles.size() <= 8);
     CHECK(phys.median_largest > 75);
     CHECK(phys.median_largest < 100);
-    CHECK(pr.mean_deviation < 20);  // random orientations: 22.5
+    // random orientations: 22.5; measured 19.1 (continuous) and 18.1 (sampled), and 21-22 where
+    // the ratio is >= 3: at 100 points the boundary dominates (alignment: the next test)
+    CHECK(pr.mean_deviation < 20);
     // the corners (metric 14.5 x larger) get more points than the centre
     int corner = 0, centre = 0;
     for (const Vec2& p : r.sites) {
@@ -137,6 +167,27 @@ TEST_CASE("thesis §6.1: saddle metric (eq. 6.1), continuous and on a 16x16 back
     }
     CHECK(corner > 4 * centre);
   }
+}
+
+TEST_CASE("saddle metric (eq. 6.1) with 300 points: Voronoi edges follow the principal directions") {
+  // At the thesis's 100 points (above) most cells touch the boundary and the alignment measure is
+  // 18-19 deg, near the 22.5 of random orientations, so it cannot tell an aligned diagram from a
+  // random one. With scale 2 (about 300 points) the interior dominates: measured 12.2 deg over all
+  // edges, 15.9 where the eigenvalue ratio 1 + 4|y|^2 >= 3 (saddle_alignment, from the analytic
+  // metric).
+  auto f = std::make_shared<SaddleMetric>();
+  Background bg = Background::analytic(saddle_square(16), f, 2.0);
+  LpcvtOptions o = saddle_options();
+  LpcvtResult r = run_lpcvt(bg, o);
+  check_valid(r, bg);
+  const AlignmentStats all = voronoi_alignment(bg, r.sites, r.nfixed, true);
+  int n = 0;
+  const double aniso = saddle_alignment(bg, r, 3.0, &n);
+  MESSAGE(r.sites.size() << " points: Voronoi edges off the principal directions by " << all.mean_deviation
+                         << " deg; " << aniso << " deg over the " << n << " edges where the ratio is >= 3");
+  CHECK(r.sites.size() > 250);
+  CHECK(all.mean_deviation < 15);
+  CHECK(aniso < 19);
 }
 
 TEST_CASE("non-convex domains: L-shape and a square hole are triangulated validly") {

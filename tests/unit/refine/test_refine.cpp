@@ -355,7 +355,7 @@ TEST_CASE("bad input: fraction, missing / wrong fields, triangles") {
   CHECK(message("u").find("per-node field") != std::string::npos);
   CHECK(message("Vinv").find("9 components") != std::string::npos);
   CHECK(message("short").find("3 values for 4 cells") != std::string::npos);
-  CHECK(message("nan").find("cell 1") != std::string::npos);
+  CHECK(message("nan").find("is nan in cell 2 (centroid (0.75, 0.25))") != std::string::npos);  // numbered from 1
   CHECK(message("B") == "no error");
 
   Mesh t;
@@ -408,6 +408,8 @@ TEST_CASE("a 4:1 interface (four faces along one coarse edge) is refused, not ta
   m.cells.push_back(Cell{{0, 1, 2, 3}, 4});
   for (int j = 0; j < 4; ++j) m.cells.push_back(Cell{{right[j], 7 + j, 8 + j, right[j + 1]}, 4});
   CHECK_THROWS_WITH_AS(refine_mesh(m, {}, nullptr, "x.msh"), doctest::Contains("x.msh: "), InputError);
+  // cells and their edges numbered from 1, as in every message (docs/exit-codes.md)
+  CHECK_THROWS_WITH_AS(refine_mesh(m, {}), doctest::Contains("edge 2 of cell 1 (centroid (0.5, 0.5))"), InputError);
   // The same fine cells against two coarse halves (2:1) are fine.
   Mesh ok = m;
   ok.cells[0] = Cell{{0, 1, 5, 3}, 4};

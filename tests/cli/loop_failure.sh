@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# A loop broken mid-way (issue #16 item 6; docs/loop.md "Exit status"): a tool that fails in
+# step-1 stops scripts/loop/run-loop.sh with status 1 (the earlier steps are saved and valid),
+# not 2 (bad input, nothing run); through make the status is make's own 2 with the loop's 1 in
+# make's "Error 1" line. The files of step-0 are left untouched, and the same command, once the
+# tool works again, resumes at step-1 without redoing step-0 and finishes with status 0.
+set -euo pipefail
+S=$QUADAPT_SOURCE_DIR
+. "$S/tests/cli/lib/assert.sh"
+in_temp_dir
+python3 "$S/tests/golden/refine/make_square.py" 4 sq4.msh bare
+cat > smooth.json <<'JSON'
+{ "diffusion": [[1, 0], [0, 1]], "advection": [1, 0.5], "exact": "sin(pi*x)*sin(pi*y) + x*y",
+  "functional": {"boundary": "right"} }
+JSON
+# the tools, with a refine that fails (exit 2, like a bad input) on step-1's mesh
+mkdir bin
+ln -s "$QUADAPT_BIN_DIR/dgsolve" bin/dgsolve
+cat > bin/refine <<SH
+#!/usr/bin/env bash
+case "\$*" in *step-1/*) echo "refine: \$1: injected failure" >&2; exit 2 ;; esac
+exec "$QUADAPT_BIN_DIR/refine" "\$@"
+SH
+chmod +x bin/refine
+ARGS=(--case smooth.json --mesh sq4.msh --p 1 --method uniform --mode feature --steps 3 --pictures no)
+MK=(make --no-print-directory -f "$S/Makefile.cases" CASE=smooth.json MESH=sq4.msh P=1 METHOD=uniform
+    STEPS=3 PICTURES=no)
+
+# --- the script: status 1, and a message that says where it stopped
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --out run > log1 2>&1 || rc=$?
+if [ $rc -ne 1 ]; then cat log1; fail "run-loop.sh: exit $rc after a failing step (want 1)"; fi
+grep -q 'refine failed (exit 2)' log1 || fail "the failing tool is not named: $(cat log1)"
+grep -q 'stopped in step-1 (status 1)' log1 || fail "no stop message: $(cat log1)"
+for f in step-0/mesh.msh step-0/sol.msh step-0/sol.json step-0/adapted.msh step-0/adapted.json step-1/mesh.msh \
+         step-1/sol.msh convergence.csv; do
+  [ -s "run/$f" ] || fail "run/$f missing after the failure"
+done
+if [ -e run/loop.done ] || [ -e run/step-1/adapted.msh ] || [ -e run/step-2 ]; then fail "work past the failure"; fi
+meshconvert -q run/step-0/adapted.msh -o check.msh  # a valid mesh (the reader validates it)
+[ "$(python3 -c 'import csv,sys; print(len(list(csv.DictReader(open(sys.argv[1])))))' run/convergence.csv)" = 2 ] ||
+  fail "convergence.csv: $(cat run/convergence.csv)"
+mkdir saved && cp -p run/step-0/* saved/
+
+# --- through make: make's status is 2 (GNU make's for any failed recipe), its last line the loop's 1
+rc=0; "${MK[@]}" loop BIN="$PWD/bin" OUT=run-make > log2 2>&1 || rc=$?
+if [ $rc -ne 2 ]; then cat log2; fail "make: exit $rc"; fi
+grep -q 'stopped in step-1 (status 1)' log2 || fail "make: no stop message: $(cat log2)"
+tail -n 1 log2 | grep -q '\] Error 1$' || fail "make's last line does not carry the loop's status 1: $(tail -n 1 log2)"
+# bad input through make and through the script: 2 both, nothing run
+rc=0; "${MK[@]}" loop BIN="$PWD/bin" OUT=run-bad METHOD=simplex > log3 2>&1 || rc=$?
+[ $rc -eq 2 ] || fail "make, bad METHOD: exit $rc"
+tail -n 1 log3 | grep -q '\] Error 2$' || fail "make, bad METHOD: $(tail -n 1 log3)"
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --method simplex --out run-bad > log4 2>&1 || rc=$?
+[ $rc -eq 2 ] || fail "run-loop.sh, bad METHOD: exit $rc"
+[ ! -e run-bad ] || fail "bad input created the run directory"
+
+# --- resume with a working refine: step-0 is not redone (same bytes, same times), the loop ends with 0
+sleep 1.1  # a recomputed file would get a later modification time
+rm bin/refine && ln -s "$QUADAPT_BIN_DIR/refine" bin/refine
+PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --out run > log5 2>&1 || { cat log5; fail "resume failed"; }
+for f in saved/*; do
+  same_bytes "$f" "run/step-0/$(basename "$f")"
+  [ ! "run/step-0/$(basename "$f")" -nt "$f" ] || fail "step-0/$(basename "$f") was rewritten by the resume"
+done
+if grep -q 'step-0: dgsolve\|step-0: refine' log5; then fail "step-0's tools ran again: $(cat log5)"; fi
+[ -s run/loop.done ] && [ -s run/step-3/sol.msh ] || fail "the resumed loop did not finish"
+echo "ok: a failing step stops the loop with status 1 (make: 2, 'Error 1'), earlier steps intact, resume finishes"
