@@ -28,9 +28,10 @@ bool in_convex_polygon(const std::array<Vec2, 4>& v, int nv, const Vec2& y, doub
   for (int k = 0; k < nv; ++k) {
     const Vec2& a = v[k];
     const Vec2& b = v[(k + 1) % nv];
-    Vec2 e = b - a;
-    double len = e.norm();
-    if (cross(e, y - a) < -tol * len) return false;
+    const Vec2 e = b - a;
+    // cross < -tol |e|, without the square root
+    const double c = cross(e, y - a);
+    if (c < 0 && c * c > tol * tol * e.squaredNorm()) return false;
   }
   return true;
 }
@@ -167,6 +168,7 @@ void Background::finish() {
       }
     }
   }
+  cache_partition();
 }
 
 Background Background::from_frame(const Frame& f, double scale, const std::string& path) {
@@ -217,14 +219,21 @@ void Background::set_mesh_cell_metrics(const std::vector<Mat2>& M) {
   finish();
 }
 
-Mat2 Background::partition_metric(int c) const {
-  if (!metric_cells_) return Mat2::Identity();
-  const Mat2 G = cells_[c].M.transpose() * cells_[c].M;
-  if (cell_alpha_ == 1.0) return G / G.trace();
-  Eigen::SelfAdjointEigenSolver<Mat2> es(G);
-  const Eigen::Vector2d l = es.eigenvalues().cwiseMax(1e-300).array().pow(cell_alpha_);
-  const Mat2 Ga = es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
-  return Ga / Ga.trace();
+void Background::cache_partition() {
+  partition_.clear();
+  if (!metric_cells_) return;
+  partition_.resize(cells_.size());
+  for (size_t c = 0; c < cells_.size(); ++c) {
+    const Mat2 G = cells_[c].M.transpose() * cells_[c].M;
+    if (cell_alpha_ == 1.0) {
+      partition_[c] = G / G.trace();
+      continue;
+    }
+    Eigen::SelfAdjointEigenSolver<Mat2> es(G);
+    const Eigen::Vector2d l = es.eigenvalues().cwiseMax(1e-300).array().pow(cell_alpha_);
+    const Mat2 Ga = es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
+    partition_[c] = Ga / Ga.trace();
+  }
 }
 
 Background Background::scaled(double f) const {
@@ -233,6 +242,7 @@ Background Background::scaled(double f) const {
   b.scale_ *= f;
   for (IntegrationCell& ic : b.cells_) ic.M *= f;
   b.metric_area_ *= f * f;
+  b.cache_partition();
   return b;
 }
 

@@ -122,11 +122,13 @@ class Background {
   void set_metric_cells(bool on, double alpha = 1.0) {
     metric_cells_ = on;
     cell_alpha_ = alpha;
+    cache_partition();
   }
   bool metric_cells() const { return metric_cells_; }
   double cell_anisotropy() const { return cell_alpha_; }
-  /// The partition metric of integration cell c: G_c (above) or the identity.
-  Mat2 partition_metric(int c) const;
+  /// The partition metric of integration cell c: G_c (above) or the identity (cached: the
+  /// energy asks for it once per piece).
+  Mat2 partition_metric(int c) const { return metric_cells_ ? partition_[c] : Mat2::Identity(); }
 
   /// M_eff at y, y in integration cell c.
   Mat2 metric(int c, const Vec2& y) const;
@@ -152,7 +154,8 @@ class Background {
 
  private:
   void build(const Mesh& m);  // integration cells, bbox, locator
-  void finish();              // areas, metric area
+  void finish();              // areas, metric area, partition metrics
+  void cache_partition();     // partition_ from the cells' metrics (metric cells only)
 
   Mesh mesh_;
   std::vector<IntegrationCell> cells_;
@@ -161,6 +164,7 @@ class Background {
   double scale_ = 1;
   bool metric_cells_ = false;
   double cell_alpha_ = 1.0;
+  std::vector<Mat2> partition_;  ///< per integration cell: G_c (metric cells only)
   double area_ = 0, metric_area_ = 0;
   Vec2 lo_{0, 0}, hi_{0, 0};
   // locator: nx*ny buckets, CSR lists of cells
