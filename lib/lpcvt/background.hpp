@@ -82,6 +82,9 @@ struct IntegrationCell {
   Mat2 M = Mat2::Zero();  ///< effective metric (constant mode; analytic mode: M at centroid)
 };
 
+/// True when y is in the closed convex CCW polygon v[0..nv) (within `tol` of its edges).
+bool in_convex_polygon(const std::array<Vec2, 4>& v, int nv, const Vec2& y, double tol);
+
 class Background {
  public:
   /// Piecewise-constant metric from a mesh's Vinv taken as it is (no size convention applied):
@@ -173,7 +176,5 @@ class Background {
   std::vector<int> bucket_ptr_, bucket_cells_;
 };
 
-/// True when y is in the closed convex CCW polygon v[0..nv) (within `tol` of its edges).
-bool in_convex_polygon(const std::array<Vec2, 4>& v, int nv, const Vec2& y, double tol);
 
 }  // namespace quadapt::lpcvt
