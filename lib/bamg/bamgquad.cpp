@@ -27,38 +27,40 @@ Mesh bamg_quad(const Frame& fr, const BamgQuadOptions& opt, BamgQuadStats* stats
   }
   const auto cell_metric = bamg_cell_metrics(M, st.edge_factor);
   const auto vmetric = vertex_metrics(frame, cell_metric, opt.log_euclidean);
+  // Calibration on BAMG's triangle count alone: Blossom-Quad pairs the triangles and the split
+  // makes 4 cells of a quad and 3 of a triangle, so T triangles give 2 T + (unpaired triangles)
+  // cells, about 2 T; BAMG is rerun until 2 T is within the tolerance, and Blossom runs once.
   const int max_runs = std::max(1, opt.max_runs);
   double factor = 1;
-  Mesh best;
+  FfbamgResult best;
   double best_err = 1e300;
   for (int run = 0; run < max_runs; ++run) {
     std::vector<Eigen::Matrix2d> scaled = vmetric;
     for (auto& m : scaled) m *= factor;
-    FfbamgResult fr = run_ffbamg(bg, scaled, opt.ffbamg);
-    Mesh tri = mesh_from_bamg(fr.mesh, frame);
-    RecombineStats rs;
-    Mesh q = recombine_to_all_quads(tri, opt.recombine, &rs, path + " (BAMG triangles)");
-    const double ratio = q.num_cells() / st.target_complexity;
+    FfbamgResult r = run_ffbamg(bg, scaled, opt.ffbamg);
+    const double ratio = kCellsPerBamgTriangle * static_cast<double>(r.mesh.triangles.size()) / st.target_complexity;
     ++st.runs;
-    st.bamg_seconds += fr.seconds;
+    st.bamg_seconds += r.seconds;
     if (run == 0) st.first_ratio = ratio;
     const double err = std::abs(ratio - 1);
     if (err < best_err) {
       best_err = err;
-      best = std::move(q);
-      st.bamg_command = fr.command;
-      st.bamg_vertices = tri.num_nodes();
-      st.bamg_triangles = tri.num_cells();
-      st.recombine = rs;
       st.metric_factor = factor;
-      st.cells = best.num_cells();
-      st.complexity_ratio = ratio;
+      st.predicted_ratio = ratio;
+      best = std::move(r);
     }
     if (err <= opt.calibration_tolerance) break;
-    factor /= ratio;  // cells ~ sqrt(det(factor * 𝓜)) = factor * ...
+    factor /= ratio;  // triangles ~ sqrt(det(factor * 𝓜)) = factor * ...
   }
+  st.bamg_command = best.command;
+  Mesh tri = mesh_from_bamg(best.mesh, frame);
+  st.bamg_vertices = tri.num_nodes();
+  st.bamg_triangles = tri.num_cells();
+  Mesh q = recombine_to_all_quads(tri, opt.recombine, &st.recombine, path + " (BAMG triangles)");
+  st.cells = q.num_cells();
+  st.complexity_ratio = st.cells / st.target_complexity;
   if (stats) *stats = st;
-  return best;
+  return q;
 }
 
 }  // namespace quadapt
