@@ -18,7 +18,9 @@ struct BamgQuadOptions {
   /// triangles; kCellsPerBamgTriangle) misses the frame's target by more than
   /// calibration_tolerance (relative), the whole metric is multiplied by target / (2 T) (the
   /// density scales like sqrt(det 𝓜)) and BAMG is run again, at most max_runs times in all; the
-  /// run closest to the target goes through Blossom-Quad and the split, once. max_runs = 1: off.
+  /// run closest to the target goes through Blossom-Quad and the split, once — again (with the
+  /// measured cells per triangle) only when that count still misses and BAMG runs remain; the
+  /// all-quad mesh closest to the target is kept. max_runs = 1: off.
   int max_runs = 3;
   double calibration_tolerance = 0.03;
   FfbamgOptions ffbamg;
@@ -39,7 +41,8 @@ struct BamgQuadStats {
   RecombineStats recombine;      ///< Blossom and split figures, quality of the result
   int cells = 0;                 ///< cells of the all-quad result
   double complexity_ratio = 0;   ///< cells / target_complexity
-  int runs = 0;                  ///< BAMG runs made (calibration); Blossom runs once
+  int runs = 0;                  ///< BAMG runs made (calibration)
+  int blossom_runs = 0;          ///< Blossom-Quad runs (1 unless its count missed, above)
   double metric_factor = 1;      ///< calibration factor applied to 𝓜 in the kept run
   double first_ratio = 0;        ///< predicted cells (2 T) / target of the first, uncalibrated run
   double predicted_ratio = 0;    ///< predicted cells (2 T) / target of the kept run
