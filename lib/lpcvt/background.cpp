@@ -145,6 +145,39 @@ void Background::build(const Mesh& m) {
   bucket_cells_.clear();
   bucket_cells_.reserve(bucket_ptr_.back());
   for (auto& l : b) bucket_cells_.insert(bucket_cells_.end(), l.begin(), l.end());
+  // Graded backgrounds (boundary layers, shocks) put hundreds of cells in one bucket where the
+  // sites are densest: such buckets get an s x s grid of their own (the same cells in the same
+  // order, so locate's answer does not change).
+  bucket_sub_.assign(b.size(), -1);
+  subs_.clear();
+  sub_ptr_.assign(1, 0);
+  sub_cells_.clear();
+  for (size_t k = 0; k < b.size(); ++k) {
+    if (b[k].size() <= 16) continue;
+    const int sn = std::min(64, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(b[k].size())))));
+    const int bi = static_cast<int>(k % nx_), bj = static_cast<int>(k / nx_);
+    bucket_sub_[k] = static_cast<int>(subs_.size());
+    subs_.push_back({sn, static_cast<int>(sub_ptr_.size()) - 1});
+    std::vector<std::vector<int>> sb(static_cast<size_t>(sn) * sn);
+    for (int c : b[k]) {
+      Vec2 a = cells_[c].v[0], z = a;
+      for (int q = 1; q < cells_[c].nv; ++q) {
+        a = a.cwiseMin(cells_[c].v[q]);
+        z = z.cwiseMax(cells_[c].v[q]);
+      }
+      auto sub = [&](double t, int base, int lim) {
+        return std::clamp(static_cast<int>(std::floor((t - base) * sn)), 0, lim);
+      };
+      const int i0 = sub((a.x() - tol_ - lo_.x()) / dx_, bi, sn - 1), i1 = sub((z.x() + tol_ - lo_.x()) / dx_, bi, sn - 1);
+      const int j0 = sub((a.y() - tol_ - lo_.y()) / dy_, bj, sn - 1), j1 = sub((z.y() + tol_ - lo_.y()) / dy_, bj, sn - 1);
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) sb[static_cast<size_t>(j) * sn + i].push_back(c);
+    }
+    for (auto& l : sb) {
+      sub_cells_.insert(sub_cells_.end(), l.begin(), l.end());
+      sub_ptr_.push_back(static_cast<int>(sub_cells_.size()));
+    }
+  }
 }
 
 void Background::finish() {
@@ -276,6 +309,17 @@ int Background::locate(const Vec2& y, int hint) const {
   int i = std::clamp(static_cast<int>(std::floor(fx)), 0, nx_ - 1);
   int j = std::clamp(static_cast<int>(std::floor(fy)), 0, ny_ - 1);
   size_t b = static_cast<size_t>(j) * nx_ + i;
+  if (bucket_sub_[b] >= 0) {
+    const Sub& sg = subs_[bucket_sub_[b]];
+    const int si = std::clamp(static_cast<int>(std::floor((fx - i) * sg.n)), 0, sg.n - 1);
+    const int sj = std::clamp(static_cast<int>(std::floor((fy - j) * sg.n)), 0, sg.n - 1);
+    const int k = sg.first + sj * sg.n + si;
+    for (int q = sub_ptr_[k]; q < sub_ptr_[k + 1]; ++q) {
+      const int c = sub_cells_[q];
+      if (in_convex_polygon(cells_[c].v, cells_[c].nv, y, tol_)) return c;
+    }
+    return -1;
+  }
   for (int k = bucket_ptr_[b]; k < bucket_ptr_[b + 1]; ++k) {
     int c = bucket_cells_[k];
     if (in_convex_polygon(cells_[c].v, cells_[c].nv, y, tol_)) return c;

@@ -174,6 +174,13 @@ class Background {
   int nx_ = 1, ny_ = 1;
   double dx_ = 1, dy_ = 1, tol_ = 0;
   std::vector<int> bucket_ptr_, bucket_cells_;
+  // crowded buckets (> 16 cells): an n x n grid of sub-buckets, CSR from sub_ptr_[first]
+  struct Sub {
+    int n, first;
+  };
+  std::vector<int> bucket_sub_;  ///< per bucket: index into subs_, or -1
+  std::vector<Sub> subs_;
+  std::vector<int> sub_ptr_, sub_cells_;
 };
 
 
