@@ -5,7 +5,8 @@
                  [--work DIR] [--big-reps 1]
 
 Frames: an S-shock p = 2 loop (examples/cases/sshock.json from examples/meshes/square16.msh,
-scripts/loop/run-loop.sh --method bamg, 6 steps) gives step-6/shape.msh; size-solve
+scripts/loop/run-loop.sh --method bamg, 6 steps, about 20 s) and estimate-frame on its step-6
+solution give shape.msh; size-solve
 --complexity C makes the frames (C = 4e5, 4e6, 4e7: about 1.1e4, 1.1e5, 1.1e6 lpcvt points).
 C >= 1e7 is run --big-reps times (default 1) and only with one thread count (the last of --threads).
 
@@ -57,6 +58,8 @@ def frames(b, env, work, sizes):
                         os.path.join(SRC, "examples", "meshes", "square16.msh"), "--p", "2", "--method", "bamg",
                         "--mode", "feature", "--steps", "6", "--out", os.path.join(work, "loop"), "--pictures", "no"],
                        env=env, check=True, capture_output=True)
+        subprocess.run([f"{b}/estimate-frame", os.path.join(work, "loop", "step-6", "sol.msh"), "-o", shape, "-q"],
+                       env=env, check=True)
     out = {}
     for c in sizes:
         f = os.path.join(work, f"frame-{c}.msh")
