@@ -113,7 +113,8 @@ int main(int argc, char** argv) {
     rep["target_complexity"] = st.target_complexity;
     rep["cells"] = st.cells;
     rep["complexity_ratio"] = st.complexity_ratio;
-    rep["calibration"] = {{"runs", st.runs}, {"metric_factor", st.metric_factor}, {"first_ratio", st.first_ratio}};
+    rep["calibration"] = {{"runs", st.runs}, {"blossom_runs", st.blossom_runs}, {"metric_factor", st.metric_factor},
+                          {"first_ratio", st.first_ratio}, {"predicted_ratio", st.predicted_ratio}};
     rep["bamg"] = {{"vertices", st.bamg_vertices},
                    {"triangles", st.bamg_triangles},
                    {"seconds", st.bamg_seconds},

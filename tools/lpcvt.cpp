@@ -83,7 +83,9 @@ int main(int argc, char** argv) {
   app.add_flag("--precondition", opt.lbfgs.precondition, "Scale every site's variables by its local frame");
   app.add_option("--delta", opt.lbfgs.delta, "Stop when the energy falls by less than this (relative) over --past iterations (1e-10 with --analytic)")
       ->capture_default_str();
-  app.add_option("--past", opt.lbfgs.past, "Iterations of the --delta test (5 with --analytic)")->capture_default_str();
+  app.add_option("--past", opt.lbfgs.past, "Iterations of the --delta and --move-tol tests (5 with --analytic)")->capture_default_str();
+  app.add_option("--move-tol", opt.lbfgs.move_tol, "Stop when the points moved by less than this over --past iterations "
+                 "(RMS, in units of the local point spacing; 0 = off, --analytic's default)")->capture_default_str();
   app.add_option("--gtol", opt.lbfgs.gtol, "Gradient tolerance (per site, relative)")->capture_default_str();
   app.add_option("--lmin", opt.split.lmin, "Merge edges shorter than this (metric units, eq. 4.12; 0 with --analytic)")->capture_default_str();
   app.add_option("--lmax", opt.split.lmax, "Split edges longer than this (sqrt(2) with --analytic)")->capture_default_str();

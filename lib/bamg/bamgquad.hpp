@@ -14,15 +14,22 @@ namespace quadapt {
 struct BamgQuadOptions {
   double edge_factor = 0;      ///< BAMG unit edge in frame half-axes; 0 = default_bamg_edge_factor()
   bool log_euclidean = true;   ///< vertex metric: log-Euclidean (else arithmetic) mean of the cells'
-  /// Complexity calibration: when the all-quad mesh's cell count misses the frame's target by
-  /// more than calibration_tolerance (relative), the whole metric is multiplied by
-  /// target / cells (the cell density scales like sqrt(det 𝓜)) and the path is run again, at
-  /// most max_runs times in all; the run closest to the target is kept. max_runs = 1: off.
+  /// Complexity calibration on BAMG's count: when the predicted cell count 2 T (T = BAMG's
+  /// triangles; kCellsPerBamgTriangle) misses the frame's target by more than
+  /// calibration_tolerance (relative), the whole metric is multiplied by target / (2 T) (the
+  /// density scales like sqrt(det 𝓜)) and BAMG is run again, at most max_runs times in all; the
+  /// run closest to the target goes through Blossom-Quad and the split, once — again (with the
+  /// measured cells per triangle) only when that count still misses and BAMG runs remain; the
+  /// all-quad mesh closest to the target is kept. max_runs = 1: off.
   int max_runs = 3;
   double calibration_tolerance = 0.03;
   FfbamgOptions ffbamg;
   RecombineOptions recombine;
 };
+
+/// All-quad cells per BAMG triangle predicted by the calibration: the split makes 4 cells of a
+/// quad and 3 of a triangle, so T triangles paired into q quads leaving t give 4q + 3t = 2T + t.
+constexpr double kCellsPerBamgTriangle = 2.0;
 
 struct BamgQuadStats {
   int frame_cells = 0;
@@ -34,9 +41,11 @@ struct BamgQuadStats {
   RecombineStats recombine;      ///< Blossom and split figures, quality of the result
   int cells = 0;                 ///< cells of the all-quad result
   double complexity_ratio = 0;   ///< cells / target_complexity
-  int runs = 0;                  ///< BAMG + Blossom runs made (calibration)
+  int runs = 0;                  ///< BAMG runs made (calibration)
+  int blossom_runs = 0;          ///< Blossom-Quad runs (1 unless its count missed, above)
   double metric_factor = 1;      ///< calibration factor applied to 𝓜 in the kept run
-  double first_ratio = 0;        ///< cells / target of the first, uncalibrated run
+  double first_ratio = 0;        ///< predicted cells (2 T) / target of the first, uncalibrated run
+  double predicted_ratio = 0;    ///< predicted cells (2 T) / target of the kept run
 };
 
 /// Runs the whole path on a frame (frame/frame.hpp: its background's boundary groups are kept).

@@ -47,6 +47,7 @@ const std::vector<OptionRange>& option_ranges() {
       {"lpcvt",          "--cells-per-triangle",    0,     kInf,  true,  false},
       {"lpcvt",          "--delta",                 0,     1,     false, true},
       {"lpcvt",          "--past",                  1,     kInf,  false, false},
+      {"lpcvt",          "--move-tol",              0,     kInf,  false, false},
       {"lpcvt",          "--gtol",                  0,     kInf,  false, false},
       {"lpcvt",          "--lmin",                  0,     kInf,  false, false},
       {"lpcvt",          "--lmax",                  0,     kInf,  true,  false},

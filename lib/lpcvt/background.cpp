@@ -22,9 +22,10 @@ bool in_convex_polygon(const std::array<Vec2, 4>& v, int nv, const Vec2& y, doub
   for (int k = 0; k < nv; ++k) {
     const Vec2& a = v[k];
     const Vec2& b = v[(k + 1) % nv];
-    Vec2 e = b - a;
-    double len = e.norm();
-    if (cross(e, y - a) < -tol * len) return false;
+    const Vec2 e = b - a;
+    // cross < -tol |e|, without the square root
+    const double c = cross(e, y - a);
+    if (c < 0 && c * c > tol * tol * e.squaredNorm()) return false;
   }
   return true;
 }
@@ -138,6 +139,39 @@ void Background::build(const Mesh& m) {
   bucket_cells_.clear();
   bucket_cells_.reserve(bucket_ptr_.back());
   for (auto& l : b) bucket_cells_.insert(bucket_cells_.end(), l.begin(), l.end());
+  // Graded backgrounds (boundary layers, shocks) put hundreds of cells in one bucket where the
+  // sites are densest: such buckets get an s x s grid of their own (the same cells in the same
+  // order, so locate's answer does not change).
+  bucket_sub_.assign(b.size(), -1);
+  subs_.clear();
+  sub_ptr_.assign(1, 0);
+  sub_cells_.clear();
+  for (size_t k = 0; k < b.size(); ++k) {
+    if (b[k].size() <= 16) continue;
+    const int sn = std::min(64, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(b[k].size())))));
+    const int bi = static_cast<int>(k % nx_), bj = static_cast<int>(k / nx_);
+    bucket_sub_[k] = static_cast<int>(subs_.size());
+    subs_.push_back({sn, static_cast<int>(sub_ptr_.size()) - 1});
+    std::vector<std::vector<int>> sb(static_cast<size_t>(sn) * sn);
+    for (int c : b[k]) {
+      Vec2 a = cells_[c].v[0], z = a;
+      for (int q = 1; q < cells_[c].nv; ++q) {
+        a = a.cwiseMin(cells_[c].v[q]);
+        z = z.cwiseMax(cells_[c].v[q]);
+      }
+      auto sub = [&](double t, int base, int lim) {
+        return std::clamp(static_cast<int>(std::floor((t - base) * sn)), 0, lim);
+      };
+      const int i0 = sub((a.x() - tol_ - lo_.x()) / dx_, bi, sn - 1), i1 = sub((z.x() + tol_ - lo_.x()) / dx_, bi, sn - 1);
+      const int j0 = sub((a.y() - tol_ - lo_.y()) / dy_, bj, sn - 1), j1 = sub((z.y() + tol_ - lo_.y()) / dy_, bj, sn - 1);
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) sb[static_cast<size_t>(j) * sn + i].push_back(c);
+    }
+    for (auto& l : sb) {
+      sub_cells_.insert(sub_cells_.end(), l.begin(), l.end());
+      sub_ptr_.push_back(static_cast<int>(sub_cells_.size()));
+    }
+  }
 }
 
 void Background::finish() {
@@ -161,6 +195,7 @@ void Background::finish() {
       }
     }
   }
+  cache_partition();
 }
 
 Background Background::from_frame(const Frame& f, double scale, const std::string& path) {
@@ -211,14 +246,21 @@ void Background::set_mesh_cell_metrics(const std::vector<Mat2>& M) {
   finish();
 }
 
-Mat2 Background::partition_metric(int c) const {
-  if (!metric_cells_) return Mat2::Identity();
-  const Mat2 G = cells_[c].M.transpose() * cells_[c].M;
-  if (cell_alpha_ == 1.0) return G / G.trace();
-  Eigen::SelfAdjointEigenSolver<Mat2> es(G);
-  const Eigen::Vector2d l = es.eigenvalues().cwiseMax(1e-300).array().pow(cell_alpha_);
-  const Mat2 Ga = es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
-  return Ga / Ga.trace();
+void Background::cache_partition() {
+  partition_.clear();
+  if (!metric_cells_) return;
+  partition_.resize(cells_.size());
+  for (size_t c = 0; c < cells_.size(); ++c) {
+    const Mat2 G = cells_[c].M.transpose() * cells_[c].M;
+    if (cell_alpha_ == 1.0) {
+      partition_[c] = G / G.trace();
+      continue;
+    }
+    Eigen::SelfAdjointEigenSolver<Mat2> es(G);
+    const Eigen::Vector2d l = es.eigenvalues().cwiseMax(1e-300).array().pow(cell_alpha_);
+    const Mat2 Ga = es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
+    partition_[c] = Ga / Ga.trace();
+  }
 }
 
 Background Background::scaled(double f) const {
@@ -227,6 +269,7 @@ Background Background::scaled(double f) const {
   b.scale_ *= f;
   for (IntegrationCell& ic : b.cells_) ic.M *= f;
   b.metric_area_ *= f * f;
+  b.cache_partition();
   return b;
 }
 
@@ -260,6 +303,17 @@ int Background::locate(const Vec2& y, int hint) const {
   int i = std::clamp(static_cast<int>(std::floor(fx)), 0, nx_ - 1);
   int j = std::clamp(static_cast<int>(std::floor(fy)), 0, ny_ - 1);
   size_t b = static_cast<size_t>(j) * nx_ + i;
+  if (bucket_sub_[b] >= 0) {
+    const Sub& sg = subs_[bucket_sub_[b]];
+    const int si = std::clamp(static_cast<int>(std::floor((fx - i) * sg.n)), 0, sg.n - 1);
+    const int sj = std::clamp(static_cast<int>(std::floor((fy - j) * sg.n)), 0, sg.n - 1);
+    const int k = sg.first + sj * sg.n + si;
+    for (int q = sub_ptr_[k]; q < sub_ptr_[k + 1]; ++q) {
+      const int c = sub_cells_[q];
+      if (in_convex_polygon(cells_[c].v, cells_[c].nv, y, tol_)) return c;
+    }
+    return -1;
+  }
   for (int k = bucket_ptr_[b]; k < bucket_ptr_[b + 1]; ++k) {
     int c = bucket_cells_[k];
     if (in_convex_polygon(cells_[c].v, cells_[c].nv, y, tol_)) return c;

@@ -82,6 +82,9 @@ struct IntegrationCell {
   Mat2 M = Mat2::Zero();  ///< effective metric (constant mode; analytic mode: M at centroid)
 };
 
+/// True when y is in the closed convex CCW polygon v[0..nv) (within `tol` of its edges).
+bool in_convex_polygon(const std::array<Vec2, 4>& v, int nv, const Vec2& y, double tol);
+
 class Background {
  public:
   /// Piecewise-constant metric from a mesh's Vinv taken as it is (no size convention applied):
@@ -122,11 +125,13 @@ class Background {
   void set_metric_cells(bool on, double alpha = 1.0) {
     metric_cells_ = on;
     cell_alpha_ = alpha;
+    cache_partition();
   }
   bool metric_cells() const { return metric_cells_; }
   double cell_anisotropy() const { return cell_alpha_; }
-  /// The partition metric of integration cell c: G_c (above) or the identity.
-  Mat2 partition_metric(int c) const;
+  /// The partition metric of integration cell c: G_c (above) or the identity (cached: the
+  /// energy asks for it once per piece).
+  Mat2 partition_metric(int c) const { return metric_cells_ ? partition_[c] : Mat2::Identity(); }
 
   /// M_eff at y, y in integration cell c.
   Mat2 metric(int c, const Vec2& y) const;
@@ -152,7 +157,8 @@ class Background {
 
  private:
   void build(const Mesh& m);  // integration cells, bbox, locator
-  void finish();              // areas, metric area
+  void finish();              // areas, metric area, partition metrics
+  void cache_partition();     // partition_ from the cells' metrics (metric cells only)
 
   Mesh mesh_;
   std::vector<IntegrationCell> cells_;
@@ -161,15 +167,21 @@ class Background {
   double scale_ = 1;
   bool metric_cells_ = false;
   double cell_alpha_ = 1.0;
+  std::vector<Mat2> partition_;  ///< per integration cell: G_c (metric cells only)
   double area_ = 0, metric_area_ = 0;
   Vec2 lo_{0, 0}, hi_{0, 0};
   // locator: nx*ny buckets, CSR lists of cells
   int nx_ = 1, ny_ = 1;
   double dx_ = 1, dy_ = 1, tol_ = 0;
   std::vector<int> bucket_ptr_, bucket_cells_;
+  // crowded buckets (> 16 cells): an n x n grid of sub-buckets, CSR from sub_ptr_[first]
+  struct Sub {
+    int n, first;
+  };
+  std::vector<int> bucket_sub_;  ///< per bucket: index into subs_, or -1
+  std::vector<Sub> subs_;
+  std::vector<int> sub_ptr_, sub_cells_;
 };
 
-/// True when y is in the closed convex CCW polygon v[0..nv) (within `tol` of its edges).
-bool in_convex_polygon(const std::array<Vec2, 4>& v, int nv, const Vec2& y, double tol);
 
 }  // namespace quadapt::lpcvt

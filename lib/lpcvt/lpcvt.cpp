@@ -106,6 +106,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
     c.grad_norm = last.grad_norm;
     c.converged = last.converged;
     c.stop = last.stop;
+    c.window_move = last.window_move;
     c.points = static_cast<int>(sites.size());
     r.iterations += last.iterations;
     r.evaluations += last.evaluations;
@@ -331,6 +332,7 @@ nlohmann::json to_json(const LpcvtResult& r) {
     cyc.push_back({{"cycle", c.cycle}, {"polish", c.polish}, {"iterations", c.iterations},
                    {"evaluations", c.evaluations}, {"energy", c.energy}, {"grad_norm", c.grad_norm},
                    {"converged", c.converged}, {"stop", c.stop}, {"points", c.points},
+                   {"window_move", c.window_move >= 0 ? json(c.window_move) : json(nullptr)},
                    {"edges", c.split.edges}, {"splits", c.split.splits}, {"merges", c.split.merges},
                    {"removed", c.split.removed_outside}, {"change_fraction", c.split.change_fraction()},
                    {"tolerance", c.tolerance}, {"level", c.level}, {"edge_length_min", c.split.min_length},
@@ -344,7 +346,8 @@ nlohmann::json to_json(const LpcvtResult& r) {
                   {"evaluations", l.evaluations}, {"seconds", l.seconds}});
   j["levels"] = lv;
   json h = {{"cycle", json::array()}, {"iteration", json::array()}, {"energy", json::array()},
-            {"grad_norm", json::array()}, {"step", json::array()}, {"points", json::array()}};
+            {"grad_norm", json::array()}, {"step", json::array()}, {"points", json::array()},
+            {"window_move", json::array()}};
   for (const IterationRecord& it : r.history) {
     h["cycle"].push_back(it.cycle);
     h["iteration"].push_back(it.iteration);
@@ -352,6 +355,7 @@ nlohmann::json to_json(const LpcvtResult& r) {
     h["grad_norm"].push_back(it.grad_norm);
     h["step"].push_back(it.step);
     h["points"].push_back(it.points);
+    h["window_move"].push_back(it.window_move >= 0 ? json(it.window_move) : json(nullptr));
   }
   j["history"] = h;
   return j;

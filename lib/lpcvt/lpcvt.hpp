@@ -61,8 +61,10 @@ struct LpcvtOptions {
   bool exact_count = true;      ///< set the point count to the requested one at the start of each
                                 ///< level (multilevel) and before the polish, see adjust_count
 
-  /// The lpcvt tool's defaults for frames: lattice start, short relaxations (L-BFGS at most 100
-  /// iterations, delta 1e-3 over 10), energy weight |det M|^1 (docs/lpcvt.md, Convergence).
+  /// The lpcvt tool's defaults for frames: lattice start, relaxations until the points settle
+  /// (RMS metric displacement at most 0.05 spacing over 10 iterations, or the energy falls by
+  /// less than 1e-3 over 10; at most 300 iterations), energy weight |det M|^1 (docs/lpcvt.md,
+  /// Convergence).
   static LpcvtOptions for_frame();
   /// The thesis's validation settings (§6.1): 20 uniform random start points, no exact count,
   /// lmin 0, lmax sqrt(2), the unweighted energy, L-BFGS to delta 1e-10.
@@ -88,6 +90,7 @@ struct CycleRecord {
   double energy = 0, grad_norm = 0;
   bool converged = false;       ///< of the minimisation
   std::string stop;             ///< of the minimisation
+  double window_move = -1;      ///< of the minimisation: the last RMS metric displacement over `past` iterations
   int points = 0;               ///< sites after the split/merge
   SplitMergeResult split;       ///< zero for the polish step
   double tolerance = 0;         ///< change tolerance used for this cycle

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 #include <unordered_set>
 
 namespace quadapt::lpcvt {
@@ -37,18 +36,29 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
   const int nt = static_cast<int>(tris.size());
   std::vector<Tri> T(nt);
   {
-    std::unordered_map<long long, int> half;  // directed edge (a -> b) -> triangle * 3 + k
-    half.reserve(static_cast<size_t>(nt) * 3);
-    auto key = [&](int a, int b) { return static_cast<long long>(a) * n + b; };
+    // triangle adjacency from the outgoing half-edges of every vertex (CSR; no hashing)
+    std::vector<int> hptr(n + 1, 0), hto(3 * static_cast<size_t>(nt)), hid(3 * static_cast<size_t>(nt));
+    for (int t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k) ++hptr[tris[t][(k + 1) % 3] + 1];
+    for (int i = 0; i < n; ++i) hptr[i + 1] += hptr[i];
+    std::vector<int> fill(hptr.begin(), hptr.end() - 1);
     for (int t = 0; t < nt; ++t) {
       T[t].v = tris[t];
       T[t].nb = {-1, -1, -1};
-      for (int k = 0; k < 3; ++k) half[key(tris[t][(k + 1) % 3], tris[t][(k + 2) % 3])] = t * 3 + k;
+      for (int k = 0; k < 3; ++k) {  // directed edge a -> b of triangle t, opposite v[k]
+        const int h = fill[tris[t][(k + 1) % 3]]++;
+        hto[h] = tris[t][(k + 2) % 3];
+        hid[h] = t;
+      }
     }
     for (int t = 0; t < nt; ++t)
       for (int k = 0; k < 3; ++k) {
-        auto it = half.find(key(tris[t][(k + 2) % 3], tris[t][(k + 1) % 3]));
-        if (it != half.end()) T[t].nb[k] = it->second / 3;
+        const int a = tris[t][(k + 2) % 3], b = tris[t][(k + 1) % 3];  // the twin b <- a
+        for (int h = hptr[a]; h < hptr[a + 1]; ++h)
+          if (hto[h] == b) {
+            T[t].nb[k] = hid[h];
+            break;
+          }
       }
   }
   MetricGraph g;
@@ -103,24 +113,36 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
     stack.emplace_back(u, 0);
     stack.emplace_back(u, 1);
   }
+  // neighbour lists (CSR, sorted): every edge from both of its triangles, then sorted and unique
   g.tris.resize(nt);
-  std::vector<std::vector<int>> nb(n);
+  std::vector<int> cnt(n + 1, 0);
   for (int t = 0; t < nt; ++t) {
     g.tris[t] = T[t].v;
     for (int k = 0; k < 3; ++k) {
-      const int a = T[t].v[k], b = T[t].v[(k + 1) % 3];
-      nb[a].push_back(b);
-      nb[b].push_back(a);
+      ++cnt[T[t].v[k] + 1];
+      ++cnt[T[t].v[(k + 1) % 3] + 1];
     }
   }
-  g.ptr.assign(n + 1, 0);
-  for (int i = 0; i < n; ++i) {
-    std::sort(nb[i].begin(), nb[i].end());
-    nb[i].erase(std::unique(nb[i].begin(), nb[i].end()), nb[i].end());
-    g.ptr[i + 1] = g.ptr[i] + static_cast<int>(nb[i].size());
+  for (int i = 0; i < n; ++i) cnt[i + 1] += cnt[i];
+  std::vector<int> all(cnt[n]);
+  {
+    std::vector<int> fill(cnt.begin(), cnt.end() - 1);
+    for (int t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int a = T[t].v[k], b = T[t].v[(k + 1) % 3];
+        all[fill[a]++] = b;
+        all[fill[b]++] = a;
+      }
   }
-  g.adj.reserve(g.ptr[n]);
-  for (auto& l : nb) g.adj.insert(g.adj.end(), l.begin(), l.end());
+  g.ptr.assign(n + 1, 0);
+  g.adj.clear();
+  g.adj.reserve(cnt[n] / 2 + n);
+  for (int i = 0; i < n; ++i) {
+    std::sort(all.begin() + cnt[i], all.begin() + cnt[i + 1]);
+    const auto e = std::unique(all.begin() + cnt[i], all.begin() + cnt[i + 1]);
+    g.adj.insert(g.adj.end(), all.begin() + cnt[i], e);
+    g.ptr[i + 1] = static_cast<int>(g.adj.size());
+  }
   return g;
 }
 

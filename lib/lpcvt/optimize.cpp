@@ -49,6 +49,23 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
       P[i] = L * std::sqrt(std::abs(M.determinant())) * M.inverse();
     }
   }
+  // Metric of every free site at its start position, times P: |MP_i dz_i| is the site's
+  // displacement in units of the local point spacing (M_eff has unit spacing).
+  std::vector<Mat2> MP(nfree);
+  {
+    int hint = -1;
+    for (int i = 0; i < nfree; ++i) {
+      int c = bg.locate(x0[nfixed + i], hint);
+      if (c < 0) c = hint >= 0 ? hint : 0;
+      hint = c;
+      MP[i] = bg.metric(c, x0[nfixed + i]) * P[i];
+    }
+  }
+  auto metric_rms = [&](const VecX& dz) {
+    double s = 0;
+    for (int i = 0; i < nfree; ++i) s += (MP[i] * Vec2(dz[2 * i], dz[2 * i + 1])).squaredNorm();
+    return std::sqrt(s / nfree);
+  };
   EnergyWorkspace ews(opt.energy);
   auto f = [&](const VecX& z, VecX& gz) -> double {
     for (int i = 0; i < nfree; ++i) work[nfixed + i] = x0[nfixed + i] + P[i] * Vec2(z[2 * i], z[2 * i + 1]);
@@ -81,6 +98,8 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
   g /= escale;  // re-express in the new scale (f was computed with escale = 1)
   double fx = e0 / escale;
   int iter = 0;
+  VecX zsnap = z;                // sites at the last window check (every opt.past iterations)
+  bool window_checked = false;   // a window has just closed: test move_tol
   std::vector<std::pair<double, double>> recent;  // (energy, step) of the accepted iterates
   auto record = [&](double fxx, const VecX& gz, double step) {
     IterationRecord r;
@@ -121,6 +140,12 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
       res.converged = true;
       break;
     }
+    if (window_checked && opt.move_tol > 0 && res.window_move <= opt.move_tol) {
+      res.stop = "points settled";
+      res.converged = true;
+      break;
+    }
+    window_checked = false;
     if (since_restart >= opt.past && stagnated(opt.past, opt.delta)) {
       res.stop = "energy";
       res.converged = true;
@@ -184,6 +209,12 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
     VecX s = z - xp, y = g - gp;
     const double sy = s.dot(y);
     record(fx, g, displacement(s));
+    if (opt.past > 0 && iter % opt.past == 0) {
+      res.window_move = metric_rms(z - zsnap);
+      zsnap = z;
+      if (history) history->back().window_move = res.window_move;
+      window_checked = true;
+    }
     if (sy > 1e-12 * y.squaredNorm()) {
       if (static_cast<int>(S.size()) == m) {
         S.pop_front();

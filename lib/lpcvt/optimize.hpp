@@ -10,8 +10,11 @@
 // dimensionless: `gtol` bounds the largest per-site gradient component in units of
 // (mean site energy / spacing).
 //
-// Stops: gradient below gtol ("gradient", converged); relative energy change below `delta`
-// over `past` iterations ("energy", converged); the iteration cap ("iteration cap", not
+// Stops: gradient below gtol ("gradient", converged); the points settled: every `past`
+// iterations, the RMS over the free sites of |M(x_i) (x_i(k) - x_i(k - past))| (M = M_eff at
+// the site's position at the start of the call, unit = the local point spacing) is at most
+// `move_tol` ("points settled", converged); relative energy change below `delta` over `past`
+// iterations ("energy", converged); the iteration cap ("iteration cap", not
 // converged); a line-search failure (LBFGSpp throws; caught): L-BFGS restarts with fresh memory
 // from the last accepted iterate (up to 5 times); when the first step after a restart fails
 // too, the last accepted iterate is kept. A failure counts as converged when the gradient is
@@ -31,6 +34,7 @@ struct LbfgsOptions {
   double gtol = 1e-6;        ///< scaled gradient (inf-norm) tolerance
   double delta = 1e-10;      ///< relative energy decrease over `past` iterations
   int past = 5;
+  double move_tol = 0;       ///< "points settled": RMS metric displacement over `past` iterations (0 = off)
   int memory = 7;            ///< L-BFGS correction pairs
   bool precondition = false; ///< variables scaled by the local frame (optimize.cpp)
   double gamma = 0;          ///< energy weight |det M|^gamma (energy.hpp); 0 = the thesis's energy
@@ -46,6 +50,8 @@ struct IterationRecord {
   double step = 0;       ///< Euclidean norm of the site displacement of this iteration
   int evaluations = 0;   ///< energy evaluations so far in this call
   int points = 0;        ///< number of sites
+  double window_move = -1;  ///< RMS metric displacement over the last `past` iterations, on the
+                            ///< iterations where that window closes (k = past, 2 past, ...); else -1
 };
 
 struct MinimizeResult {
@@ -55,7 +61,8 @@ struct MinimizeResult {
   double grad_norm = 0;
   bool converged = false;
   int restarts = 0;  ///< L-BFGS restarts after line-search failures
-  std::string stop;  ///< "gradient", "energy", "iteration cap", "line search: ...", "no free sites"
+  double window_move = -1;  ///< the last closed window's RMS metric displacement (-1: none)
+  std::string stop;  ///< "gradient", "points settled", "energy", "iteration cap", "line search: ...", "no free sites"
   EnergyTimers timers;  ///< time in the energy evaluations of this call
 };
 

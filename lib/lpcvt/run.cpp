@@ -14,9 +14,10 @@ namespace quadapt::lpcvt {
 
 LpcvtOptions LpcvtOptions::for_frame() {
   LpcvtOptions o;
-  o.lbfgs.max_iterations = 100;
+  o.lbfgs.max_iterations = 300;
   o.lbfgs.delta = 1e-3;
   o.lbfgs.past = 10;
+  o.lbfgs.move_tol = 0.05;
   o.lbfgs.gamma = 1;
   o.set_init("", false);
   return o;

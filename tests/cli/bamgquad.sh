@@ -90,6 +90,9 @@ r = json.load(open(sys.argv[1])); q = r["quality"]
 if q["triangles"] or q["inverted"] or q["min_scaled_jacobian"] <= 0: sys.exit("FAIL: PHiLiP frame: not a valid all-quad mesh")
 if abs(r["complexity_ratio"] - 1) > 0.10: sys.exit("FAIL: PHiLiP frame: %d cells for a target of %g" % (r["cells"], r["target_complexity"]))
 if abs(r["target_complexity"] - 1296) > 1: sys.exit("FAIL: PHiLiP frame: target %g, expected 1296 (full-edge sizes)" % r["target_complexity"])
+# calibrated on BAMG's count (2 cells per triangle predicted): fewer Blossom runs than BAMG runs
+c = r["calibration"]
+if not 1 <= c["blossom_runs"] < c["runs"]: sys.exit("FAIL: PHiLiP frame: %d Blossom runs for %d BAMG runs" % (c["blossom_runs"], c["runs"]))
 print("ok: PHiLiP frame: %d cells (target %.0f, first run %.3f of it, %d runs), min SJ %.3f" % (r["cells"],
       r["target_complexity"], r["calibration"]["first_ratio"], r["calibration"]["runs"], q["min_scaled_jacobian"]))
 PY

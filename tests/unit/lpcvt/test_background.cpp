@@ -146,3 +146,28 @@ TEST_CASE("attach_frame: the output's Vinv is the frame meshed, tagged as the qu
   for (int c = 0; c < back.num_cells(); ++c) CHECK((back.M[c] - f.M[0]).norm() <= 1e-14 * f.M[0].norm());
   CHECK(back.target_cells() == doctest::Approx(f.target_cells()).epsilon(1e-12));
 }
+
+TEST_CASE("point location on a strongly graded background: the first containing cell, as a full scan") {
+  // 40 x 40 quads with the columns graded as t^4 towards x = 0: hundreds of cells fall in the
+  // locator's first buckets (sub-grids there); the answer must be the first cell (index order)
+  // that contains the point, as a scan of every cell gives, also on shared edges and nodes
+  Mesh m = quadapt::make_structured_quads(40, 40);
+  for (Vec2& p : m.nodes) p.x() = std::pow(p.x(), 4);
+  set_frame(m, 1, 1, 0);
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  auto scan = [&](const Vec2& y) {
+    for (int c = 0; c < bg.num_cells(); ++c)
+      if (bg.locate(y, c) == c) return c;  // locate's own containment test (hint = c)
+    return -1;
+  };
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1), v(0, 1e-3);
+  int checked = 0;
+  for (int k = 0; k < 3000; ++k) {
+    Vec2 y(k % 2 ? u(rng) : v(rng), u(rng));
+    if (k % 3 == 0) y = m.nodes[k % m.num_nodes()];  // nodes: shared by up to four cells
+    CHECK(bg.locate(y) == scan(y));
+    ++checked;
+  }
+  CHECK(checked == 3000);
+}

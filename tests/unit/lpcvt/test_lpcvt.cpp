@@ -242,3 +242,43 @@ TEST_CASE("deterministic for a seed, and independent of the thread count") {
   LpcvtResult c = run_lpcvt(bg, o);
   CHECK(c.initial_sites != a.initial_sites);
 }
+
+TEST_CASE("points settled: the stop comes at the first window whose RMS metric move is below move_tol") {
+  // 10:1 frame at 30 degrees, random start: the sites move a lot at first, then settle
+  Mesh m = quadapt::make_structured_quads(4, 4);
+  set_frame(m, 0.02, 0.2, 0.5);
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  std::vector<Vec2> x0 = random_inside(bg, 150, 7);
+  LbfgsOptions o;
+  o.gamma = 1;
+  o.past = 5;
+  o.move_tol = 0.02;
+  o.gtol = 0;
+  o.delta = 0;  // only the new rule can stop it before the cap
+  o.max_iterations = 1000;
+  std::vector<Vec2> x = x0;
+  const MinimizeResult r = minimize_energy(bg, x, 0, 6, o);
+  REQUIRE(r.stop == "points settled");
+  CHECK(r.converged);
+  REQUIRE(r.iterations % o.past == 0);
+  REQUIRE(r.iterations >= 2 * o.past);
+  CHECK(r.window_move <= o.move_tol);
+  // the same trajectory cut one and two windows earlier (no move_tol): the windows' moves,
+  // computed here from the sites, M at the start positions (a single cell metric here)
+  auto at = [&](int k) {
+    std::vector<Vec2> y = x0;
+    LbfgsOptions c = o;
+    c.move_tol = 0;
+    c.max_iterations = k;
+    minimize_energy(bg, y, 0, 6, c);
+    return y;
+  };
+  const std::vector<Vec2> y1 = at(r.iterations - o.past), y2 = at(r.iterations - 2 * o.past);
+  auto rms = [&](const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+    double s = 0;
+    for (size_t i = 0; i < a.size(); ++i) s += (bg.cell(0).M * (a[i] - b[i])).squaredNorm();
+    return std::sqrt(s / a.size());
+  };
+  CHECK(rms(x, y1) == doctest::Approx(r.window_move).epsilon(1e-9));
+  CHECK(rms(y1, y2) > o.move_tol);  // the previous window did not stop it
+}
