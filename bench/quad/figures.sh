@@ -2,7 +2,7 @@
 # Figures of docs/quad-quality.md: on every PHiLiP frame input_<case>_3.msh (PHiLiP's size
 # convention) and on the eq. 6.1 saddle sampled on a 16x16 background (quadapt convention),
 #   A = bamgquad FRAME                         (BAMG + Blossom + split)
-#   B = lpcvt FRAME | recombine | quadsmooth   (the thesis's path)
+#   B = lpcvt FRAME | recombine | quadsmooth --frame FRAME   (the default chain, as the loop runs it)
 # plus the thesis's own output_<case>_2.msh; meshquality (physical, and in the frame's metric).
 # usage: figures.sh BIN FIXTURES OUT  (FIXTURES = tests/fixtures/philip)
 set -euo pipefail
@@ -18,25 +18,12 @@ for c in $cases; do
   quadsmooth -q "$OUT/${c}_bamg.msh" -o "$OUT/${c}_bamg_s.msh"
   lpcvt -q "$F" --convention philip -o "$OUT/${c}_lpcvt_tri.msh"
   recombine -q "$OUT/${c}_lpcvt_tri.msh" -o "$OUT/${c}_lpcvt_q.msh"
-  quadsmooth -q "$OUT/${c}_lpcvt_q.msh" -o "$OUT/${c}_lpcvt.msh"
-  # PHiLiP's sizes are full edges: measure against 2 Vinv so that a target edge has metric length 1
-  python3 - "$F" "$OUT/${c}_frame_x2.msh" <<'PY'
-import sys
-L = open(sys.argv[1]).read().split("\n"); out = []; i = 0
-while i < len(L):
-    out.append(L[i])
-    if L[i] == "$ElementData":
-        nt = int(L[i + 1]); out += L[i + 1:i + 2 + nt]; i += 2 + nt
-        nr = int(L[i]); out += L[i:i + 1 + nr]; i += 1 + nr
-        ni = int(L[i]); ints = L[i + 1:i + 1 + ni]; out += L[i:i + 1 + ni]; i += 1 + ni
-        for k in range(int(ints[2])):
-            f = L[i + k].split(); out.append(" ".join([f[0]] + [repr(2 * float(x)) for x in f[1:]]))
-        i += int(ints[2])
-        continue
-    i += 1
-open(sys.argv[2], "w").write("\n".join(out))
-PY
-  for m in bamg bamg_s lpcvt; do meshquality "$OUT/${c}_$m.msh" --frame "$OUT/${c}_frame_x2.msh" > "$OUT/${c}_$m.mq.json"; done
+  quadsmooth -q "$OUT/${c}_lpcvt_q.msh" --frame "$F" -o "$OUT/${c}_lpcvt.msh"
+  # PHiLiP's sizes are full edges: meshquality reads a file without $FrameConvention in PHiLiP's
+  # convention (docs/file-formats.md), so a target edge has metric length 1 against F itself
+  # (this script used to double Vinv by hand, which measured against twice the sizes once the
+  # reader learnt the convention)
+  for m in bamg bamg_s lpcvt; do meshquality "$OUT/${c}_$m.msh" --frame "$F" > "$OUT/${c}_$m.mq.json"; done
   meshquality "$FIX/output_${c}_2.msh" > "$OUT/${c}_thesis.mq.json"
 done
 # eq. 6.1 saddle, sampled at the centres of a 16x16 background on [-1.3, 1.3]^2, times 8
@@ -45,7 +32,7 @@ bamgquad -q "$OUT/saddle_frame.msh" -o "$OUT/saddle_bamg.msh"
 quadsmooth -q "$OUT/saddle_bamg.msh" -o "$OUT/saddle_bamg_s.msh"
 lpcvt -q "$OUT/saddle_frame.msh" -o "$OUT/saddle_lpcvt_tri.msh"
 recombine -q "$OUT/saddle_lpcvt_tri.msh" -o "$OUT/saddle_lpcvt_q.msh"
-quadsmooth -q "$OUT/saddle_lpcvt_q.msh" -o "$OUT/saddle_lpcvt.msh"
+quadsmooth -q "$OUT/saddle_lpcvt_q.msh" --frame "$OUT/saddle_frame.msh" -o "$OUT/saddle_lpcvt.msh"
 for m in bamg bamg_s lpcvt; do meshquality "$OUT/saddle_$m.msh" --frame "$OUT/saddle_frame.msh" > "$OUT/saddle_$m.mq.json"; done
 # pictures: one boundary-layer case, the three meshes
 if command -v rsvg-convert >/dev/null; then

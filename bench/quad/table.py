@@ -48,5 +48,5 @@ print("|---|---|---|---|---|---|---|---|---|")
 for c in cases + ["saddle"]:
     if c != "saddle":
         print("| %s | thesis output_2 (physical only) | %s | | | | |" % (c, row(J("%s_thesis.mq.json" % c), False)))
-    for m, label in (("bamg", "bamgquad"), ("bamg_s", "bamgquad + quadsmooth"), ("lpcvt", "lpcvt + recombine + quadsmooth")):
+    for m, label in (("bamg", "bamgquad"), ("bamg_s", "bamgquad + quadsmooth"), ("lpcvt", "lpcvt + recombine + quadsmooth --frame")):
         print("| %s | %s | %s |" % (c if c != "saddle" else "eq. 6.1 x 8", label, row(J("%s_%s.mq.json" % (c, m)))))
