@@ -27,7 +27,9 @@ double metric_incircle(const Eigen::Matrix2d& M, const Vec2& a, const Vec2& b, c
   const double det = la * cross2(pb, pc) - lb * cross2(pa, pc) + lc * cross2(pa, pb);
   const double s = (la + lb + lc) / 3;
   if (!(s > 0)) return 0;
-  return det / (s * s);
+  // a reflection (det M < 0, same metric M^T M; most of PHiLiP's frames) maps the CCW triangle to
+  // a CW one and would flip the sign of the test: every flip anti-Delaunay
+  return (M(0, 0) * M(1, 1) - M(0, 1) * M(1, 0) < 0 ? -det : det) / (s * s);
 }
 
 MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<int, 3>> tris,

@@ -58,7 +58,8 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& sites, std::vector<std::arr
                             const EdgeMetric& metric);
 
 /// In-circle test of d against the circle through a, b, c (CCW) in the metric M: > 0 inside.
-/// Scaled to be dimensionless (divided by the product of the squared mapped edge lengths).
+/// Depends on M^T M only (a reflection, det M < 0, gives the same answer). Scaled to be
+/// dimensionless (divided by the square of the mean squared mapped distance to d).
 double metric_incircle(const Eigen::Matrix2d& M, const Vec2& a, const Vec2& b, const Vec2& c,
                        const Vec2& d);
 

@@ -2,7 +2,7 @@
 # lpcvt on real frames written by the thesis's solver (PHiLiP fixtures, read as they are): with
 # the step-3 complexity of the fixtures' README (--complexity, --degree: PHiLiP normalises its
 # frames and passes the target separately), lpcvt + recombine give an all-quad mesh whose DOF
-# count (cells (p+1)^2) is within 20% of the target (see below). Two fixtures (S-shock p = 1, boundary
+# count (cells (p+1)^2) is within 5% of the target. Two fixtures (S-shock p = 1, boundary
 # layer p = 2) to keep it fast; docs/bench-lpcvt.md has all eight.
 set -euo pipefail
 D=$QUADAPT_FIXTURES_DIR
@@ -23,11 +23,10 @@ assert abs(r["target_cells"] - C / (p + 1) ** 2) < 1e-6 * C, r["target_cells"]
 assert abs(r["points"] - r["requested_points"]) <= 1.5, (r["points"], r["requested_points"])
 dofs = q["cells"] * (p + 1) ** 2
 print(f"{sys.argv[1]}: {r['points']} points, {q['cells']} quads, {dofs} DOFs for {C:.0f} ({dofs / C:.3f})")
-# Within 10 % before the output triangulation was flipped in the metric everywhere (c. 1.075);
-# since, 1.117 and 1.163: on these coarse step-3 frames (231-242 points, wall fans) about a
-# quarter of the metric-Delaunay triangles have no convex partner and recombine splits each into
-# 3 quads instead of 2 per triangle. The loop's frames stay within 1-3 % (docs/lpcvt.md).
-assert abs(dofs / C - 1) <= 0.20, (dofs, C)
+# Within 5 % (issue #14's target; measured 1.015 and 1.017). Most of PHiLiP's cells store a
+# reflected M (det M < 0); before metric_incircle depended on M^T M only, the metric flips were
+# anti-Delaunay there and a quarter of the triangles found no convex partner (1.117, 1.163).
+assert abs(dofs / C - 1) <= 0.05, (dofs, C)
 # split/merge stops once the count leaves [1/1.5, 1.5] x the request (bl15_fb_p2 grew to 4,543
 # points over 30 cycles, 347 s, before): a handful of cycles, not the cap of 30
 assert len(r["cycle_history"]) <= 8, len(r["cycle_history"])

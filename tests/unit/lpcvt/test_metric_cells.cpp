@@ -78,6 +78,27 @@ TEST_CASE("metric in-circle: invariant under the map, sign as the Euclidean test
   (void)I;
 }
 
+TEST_CASE("metric in-circle: a reflected M (det M < 0, same M^T M) gives the same answer") {
+  // most of PHiLiP's frames store a reflected M; the test must depend on the metric only
+  const Mat2 M = rotated_metric(0.2, 0.02, 0.5);
+  Mat2 R = Mat2::Identity();
+  R(1, 1) = -1;
+  const Mat2 Mr = R * M;  // (R M)^T (R M) = M^T M
+  REQUIRE(Mr(0, 0) * Mr(1, 1) - Mr(0, 1) * Mr(1, 0) < 0);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(0, 1);
+  int inside = 0, outside = 0;
+  for (int k = 0; k < 200; ++k) {
+    Vec2 a(U(rng), U(rng)), b(U(rng), U(rng)), c(U(rng), U(rng)), d(U(rng), U(rng));
+    if ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x() < 0) std::swap(b, c);
+    const double t = metric_incircle(M, a, b, c, d), tr = metric_incircle(Mr, a, b, c, d);
+    CHECK(tr == doctest::Approx(t).epsilon(1e-9));
+    (t > 0 ? inside : outside)++;
+  }
+  CHECK(inside > 10);
+  CHECK(outside > 10);
+}
+
 TEST_CASE("metric flips give the Delaunay triangulation of the mapped points (constant metric)") {
   const Mat2 M = rotated_metric(0.2, 0.02, 0.5);
   std::mt19937 rng(5);
