@@ -15,11 +15,16 @@
 #include "lpcvt/geometry_boundary.hpp"
 #include "lpcvt/lattice.hpp"
 #include "lpcvt/multilevel.hpp"
+#include "lpcvt/rvd.hpp"
 #include "lpcvt/triangulate.hpp"
 
 namespace quadapt::lpcvt {
 
 namespace {
+
+// Split/merge cycles stop when the point count leaves [1/kCountGuard, kCountGuard] x the request
+// (run_lpcvt, below).
+constexpr double kCountGuard = 1.5;
 
 // LpcvtOptions::start_jitter: x += M^-1 u, u uniform in the disk of radius r (metric units), the
 // metric M of the background cell at x; moves leaving the domain are not made.
@@ -37,9 +42,6 @@ void jitter_start(const Background& bg, std::vector<Vec2>& pts, double r, unsign
   }
 }
 
-}  // namespace
-
-namespace {
 std::string fmt(const char* f, double a) {
   char b[64];
   std::snprintf(b, sizeof b, f, a);
@@ -61,7 +63,8 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
   groups.domain_tag = bg.mesh().domain_tag;
   groups.groups = bg.mesh().groups;
   auto boundary_of = [&](const Background& b) {
-    return opt.geometry ? geometry_boundary(b, *opt.geometry, groups.groups) : mesh_boundary(b, curves, opt.boundary_samples);
+    return opt.geometry ? geometry_boundary(b, *opt.geometry, groups.groups)
+                        : mesh_boundary(b, curves, opt.boundary_samples);
   };
   r.boundary = boundary_of(bg);
   for (double l : r.boundary.curve_length) r.boundary_metric_length += l;
@@ -212,10 +215,11 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
       // Split/merge fighting the count: on a frame graded faster than the requested count can
       // follow, every cycle splits the edges that cross the jumps and the minimisation pulls the
       // points back (PHiLiP's coarse bl15_fb_p2 frame at 241 points: 304 -> 4,543 points over
-      // 30 cycles, 347 s). Beyond 1.5x (or below 1/1.5) the request the cycles stop; the count
-      // is restored below. The loop's frames stay within 1.02x (89 runs of the studies).
+      // 30 cycles, 347 s). Beyond kCountGuard x the request (or below 1 / kCountGuard) the cycles
+      // stop; the count is restored below. The loop's frames stay within 1.02x (89 runs of the
+      // studies).
       const double ratio = static_cast<double>(sites.size()) / std::max(1, nfixed + target_interior);
-      if (opt.exact_count && opt.initial_points < 0 && (ratio > 1.5 || ratio < 1 / 1.5)) {
+      if (opt.exact_count && opt.initial_points < 0 && (ratio > kCountGuard || ratio < 1 / kCountGuard)) {
         count_stop = true;
         say("split/merge stopped: " + std::to_string(sites.size()) + " points, " + fmt("%.2f", ratio) +
             "x the request (the frame is graded more than the requested count can follow)");
@@ -258,7 +262,8 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
   if (r.converged)
     r.stop = "converged";
   else if (!outer_converged)
-    r.stop = count_stop ? std::string("split/merge stopped: the point count left [1/1.5, 1.5] x the request")
+    r.stop = count_stop ? "split/merge stopped: the point count left [1/" + fmt("%g", kCountGuard) + ", " +
+                              fmt("%g", kCountGuard) + "] x the request"
                         : "split/merge still changing more than the tolerance after " + std::to_string(opt.max_cycles) +
                               " cycles";
   else
@@ -289,18 +294,11 @@ void attach_frame(Mesh& m, const Background& bg) {
 long metric_flip_triangles(Mesh& m, const Background& bg) {
   std::vector<std::array<int, 3>> tris(m.num_cells());
   for (int c = 0; c < m.num_cells(); ++c) tris[c] = {m.cells[c].v[0], m.cells[c].v[1], m.cells[c].v[2]};
-  // the metric of the background cell at each flip quadrilateral's centroid, everywhere (also
-  // across metric jumps: Euclidean triangles there, between points placed by metric cells, cost
-  // 4-60x in the loop's DG error on S-shock and boundary-layer frames, measured)
-  int hint = -1;
-  auto metric = [&](const std::array<Vec2, 4>& corners) -> Mat2 {
-    const int c = bg.locate(0.25 * (corners[0] + corners[1] + corners[2] + corners[3]), hint);
-    if (c < 0) return Mat2::Zero();
-    hint = c;
-    return bg.cell(c).M;
-  };
-  // edges without a second triangle (the domain's boundary, holes) are never flipped
-  MetricGraph g = metric_delaunay(m.nodes, std::move(tris), metric);
+  // the energy's neighbour graph rule, everywhere (also across metric jumps: Euclidean triangles
+  // there, between points placed by metric cells, cost 4-60x in the loop's DG error on S-shock and
+  // boundary-layer frames, measured); edges without a second triangle (the domain's boundary,
+  // holes) are never flipped
+  MetricGraph g = build_metric_graph(bg, m.nodes, std::move(tris));
   for (int c = 0; c < m.num_cells(); ++c) {
     m.cells[c].v = {g.tris[c][0], g.tris[c][1], g.tris[c][2], -1};
     m.cells[c].nv = 3;

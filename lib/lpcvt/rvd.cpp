@@ -74,7 +74,7 @@ void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2&
 }
 
 MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
-                               const DelaunayGraph& dt) {
+                               std::vector<std::array<int, 3>> tris) {
   int hint = -1;
   auto metric = [&](const std::array<Vec2, 4>& q) -> Mat2 {
     int c = bg.locate(0.25 * (q[0] + q[1] + q[2] + q[3]), hint);
@@ -82,7 +82,12 @@ MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& si
     hint = c;
     return bg.cell(c).M;
   };
-  return metric_delaunay(sites, dt.triangles(), metric);
+  return metric_delaunay(sites, std::move(tris), metric);
+}
+
+MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
+                               const DelaunayGraph& dt) {
+  return build_metric_graph(bg, sites, dt.triangles());
 }
 
 RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites)

@@ -88,8 +88,13 @@ class RestrictedVoronoi {
   void find_starts();  ///< per integration cell: nearest site to its centroid (in G_Q)
 };
 
-/// The metric Delaunay graph of `sites` for bg's partition metric (metric_graph.hpp): `dt` (built
-/// with triangles) flipped with the metric of the background cell at each edge's midpoint.
+/// The metric Delaunay graph of `sites` in bg's frame (metric_graph.hpp): the CCW triangles
+/// `tris` over `sites` flipped with the metric M of the background cell at each flip
+/// quadrilateral's centroid (never flipped where that centroid is outside the domain).
+MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
+                               std::vector<std::array<int, 3>> tris);
+
+/// The same, starting from the Delaunay triangulation `dt` (built with triangles).
 MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
                                const DelaunayGraph& dt);
 

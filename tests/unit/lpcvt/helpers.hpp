@@ -1,11 +1,13 @@
 #pragma once
 // Shared helpers for the lpcvt unit tests: small in-memory domains and frames.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
 #include <vector>
 
 #include "lpcvt/background.hpp"
+#include "lpcvt/energy.hpp"
 #include "mesh/mesh.hpp"
 
 namespace lpcvt_test {
@@ -71,6 +73,27 @@ inline std::vector<Vec2> random_inside(const Background& bg, int n, unsigned see
     if (bg.inside(y)) p.push_back(y);
   }
   return p;
+}
+
+/// Max over the free sites x[nfixed..] of |g_fd - g| / |g|: the L_6 energy's gradient (weight
+/// |det M|^gamma) against fourth-order central differences with step h.
+inline double fd_worst(const Background& bg, const std::vector<Vec2>& x, int nfixed, double h,
+                       double gamma = 0) {
+  const EnergyResult r = lp_energy(bg, x, 6, true, nullptr, gamma);
+  double worst = 0;
+  for (int i = nfixed; i < static_cast<int>(x.size()); ++i) {
+    Vec2 fd;
+    for (int d = 0; d < 2; ++d) {
+      auto at = [&](double off) {
+        std::vector<Vec2> y = x;
+        y[i][d] += off;
+        return lp_energy(bg, y, 6, false, nullptr, gamma).energy;
+      };
+      fd[d] = (-at(2 * h) + 8 * at(h) - 8 * at(-h) + at(-2 * h)) / (12 * h);
+    }
+    worst = std::max(worst, (fd - r.grad[i]).norm() / r.grad[i].norm());
+  }
+  return worst;
 }
 
 }  // namespace lpcvt_test

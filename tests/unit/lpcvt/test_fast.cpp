@@ -125,21 +125,7 @@ TEST_CASE("weighted energy (omega = |det M|^gamma): gradient matches finite diff
     const int nfixed = static_cast<int>(x.size());
     auto r = random_inside(bg, 25, 9);
     x.insert(x.end(), r.begin(), r.end());
-    const double gamma = 1, h = 1e-4;
-    EnergyResult e = lp_energy(bg, x, 6, true, nullptr, gamma);
-    double worst = 0;
-    for (int i = nfixed; i < static_cast<int>(x.size()); ++i) {
-      Vec2 fd;
-      for (int d = 0; d < 2; ++d) {
-        auto at = [&](double off) {
-          std::vector<Vec2> y = x;
-          y[i][d] += off;
-          return lp_energy(bg, y, 6, false, nullptr, gamma).energy;
-        };
-        fd[d] = (-at(2 * h) + 8 * at(h) - 8 * at(-h) + at(-2 * h)) / (12 * h);
-      }
-      worst = std::max(worst, (fd - e.grad[i]).norm() / e.grad[i].norm());
-    }
+    const double worst = fd_worst(bg, x, nfixed, 1e-4, 1.0);
     MESSAGE(std::string(kind == 0 ? "continuous" : "sampled") << " saddle, gamma = 1: max relative FD error " << worst);
     CHECK(worst < 1e-6);
   }

@@ -41,26 +41,6 @@ Mat2 rotated_metric(double h1, double h2, double theta) {
   M << c / h1, s / h1, -s / h2, c / h2;
   return M;
 }
-
-/// Max over the free sites of |g_fd - g| / |g| (fourth-order central differences, step h).
-double fd_worst(const Background& bg, const std::vector<Vec2>& x, int nfixed, double h) {
-  EnergyResult r = lp_energy(bg, x, 6, true);
-  double worst = 0;
-  for (int i = nfixed; i < static_cast<int>(x.size()); ++i) {
-    Vec2 fd;
-    for (int d = 0; d < 2; ++d) {
-      auto at = [&](double off) {
-        std::vector<Vec2> y = x;
-        y[i][d] += off;
-        return lp_energy(bg, y, 6, false).energy;
-      };
-      fd[d] = (-at(2 * h) + 8 * at(h) - 8 * at(-h) + at(-2 * h)) / (12 * h);
-    }
-    worst = std::max(worst, (fd - r.grad[i]).norm() / r.grad[i].norm());
-  }
-  return worst;
-}
-
 }  // namespace
 
 TEST_CASE("metric in-circle: invariant under the map, sign as the Euclidean test in the mapped plane") {
