@@ -16,6 +16,9 @@ import math
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from compare import interp_loglog  # noqa: E402  (the study reports' interpolation)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 RUNS = sys.argv[1] if len(sys.argv) > 1 else "runs"
 THESIS = json.load(open(os.path.join(ROOT, "docs", "data", "thesis-tables.json")))["cases"]
@@ -31,11 +34,9 @@ def curve(path, col):
 
 
 def at(c, dofs):
-    for (d0, e0), (d1, e1) in zip(c, c[1:]):
-        if d0 <= dofs <= d1 and e0 > 0 and e1 > 0:
-            t = math.log(dofs / d0) / math.log(d1 / d0)
-            return math.exp(math.log(e0) + t * (math.log(e1) - math.log(e0)))
-    return float("nan")
+    """compare.py's log-log interpolation, without its extrapolation: nan off the curve."""
+    y, flag = interp_loglog(c, dofs)
+    return y if y is not None and flag == "" else float("nan")
 
 
 print("| study | p | thesis L_p-CVT DOFs | our L_p-CVT | our BAMG | L_p-CVT / BAMG | thesis best (method) | L_p-CVT / thesis best |")
