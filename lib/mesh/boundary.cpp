@@ -240,8 +240,6 @@ int complete_boundary(Mesh& m, const BoundaryOptions& opt) {
   if (missing.empty()) return 0;
 
   const bool square = is_unit_square(m);
-  int next_tag = 1;
-  for (const BoundaryGroup& g : m.groups) next_tag = std::max(next_tag, g.tag + 1);
   int k = 1;
   for (const std::vector<int>& curve : split_into_curves(m, missing, opt)) {
     std::string name;
@@ -255,7 +253,7 @@ int complete_boundary(Mesh& m, const BoundaryOptions& opt) {
       while (m.find_group("boundary_" + std::to_string(k)) >= 0) ++k;
       name = "boundary_" + std::to_string(k++);
     }
-    m.groups.push_back({next_tag++, name});
+    m.groups.push_back({m.free_tag(), name});
     const int g = static_cast<int>(m.groups.size()) - 1;
     for (int e : curve) m.boundary.push_back({missing[e], g});
   }

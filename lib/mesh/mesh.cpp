@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "core/error.hpp"
@@ -25,10 +26,24 @@ int Mesh::find_group(const std::string& name) const {
 int Mesh::group_index(const std::string& name) {
   int g = find_group(name);
   if (g >= 0) return g;
-  int tag = domain_tag;
-  for (const auto& gr : groups) tag = std::max(tag, gr.tag);
-  groups.push_back({tag + 1, name});
+  // Above the domain's tag, as before (unless a file gave that as INT_MAX).
+  const int lowest = domain_tag < std::numeric_limits<int>::max() ? domain_tag + 1 : 1;
+  groups.push_back({free_tag(lowest), name});
   return static_cast<int>(groups.size()) - 1;
+}
+
+int Mesh::free_tag(int lowest) const {
+  int top = 0;
+  for (const auto& gr : groups) top = std::max(top, gr.tag);
+  if (top < std::numeric_limits<int>::max()) return std::max(lowest, top + 1);
+  std::vector<int> used;
+  for (const auto& gr : groups) used.push_back(gr.tag);
+  std::sort(used.begin(), used.end());
+  int t = 1;
+  for (int u : used)
+    if (u == t) ++t;
+    else if (u > t) break;
+  return t;
 }
 
 const CellField* Mesh::cell_field(const std::string& name) const {

@@ -87,6 +87,9 @@ struct Mesh {
   int find_group(const std::string& name) const;
   /// Index of a group, creating it (with the next free tag) when absent.
   int group_index(const std::string& name);
+  /// A curve tag no group uses: max(lowest, largest group tag + 1), or (when the largest is
+  /// INT_MAX, as a file may say) the smallest unused tag >= 1.
+  int free_tag(int lowest = 1) const;
 
   /// Field look-ups; nullptr when absent.
   const CellField* cell_field(const std::string& name) const;

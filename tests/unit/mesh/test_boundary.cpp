@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "mesh/boundary.hpp"
@@ -123,4 +124,22 @@ TEST_CASE("partial boundary: only the missing side is added") {
   REQUIRE(m.groups.size() == 4);
   CHECK(m.groups[3].name == "left");
   CHECK(m.groups[3].tag == 4);
+}
+
+TEST_CASE("partial boundary with a group tagged INT_MAX: the added group takes the smallest free tag") {
+  // A file may give a physical tag of 2147483647; "largest + 1" overflowed (found by fuzzing).
+  Mesh m = make_structured_quads(3, 3);
+  std::vector<BoundaryEdge> keep;
+  for (const auto& e : m.boundary)
+    if (e.group != 3) keep.push_back(e);
+  m.boundary = keep;
+  m.groups.pop_back();  // drop "left"
+  m.groups[1].tag = std::numeric_limits<int>::max();  // tags now 1, INT_MAX, 3
+  CHECK(complete_boundary(m) == 3);
+  REQUIRE(m.groups.size() == 4);
+  CHECK(m.groups[3].name == "left");
+  CHECK(m.groups[3].tag == 2);
+  m.domain_tag = std::numeric_limits<int>::max();
+  const int g = m.group_index("inlet");
+  CHECK(m.groups[g].tag == 4);
 }
