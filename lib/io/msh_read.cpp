@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <unordered_map>
@@ -524,7 +525,11 @@ class MshReader {
     for (size_t g = 0; g < m_.groups.size(); ++g) {
       if (!by_entity[g]) continue;
       int t = m_.groups[g].tag;
-      if (t <= 0 || used.count(t)) t = used.empty() ? 1 : *used.rbegin() + 1;
+      if (t <= 0 || used.count(t)) {
+        if (used.empty()) t = 1;
+        else if (*used.rbegin() < std::numeric_limits<int>::max()) t = *used.rbegin() + 1;
+        else for (t = 1; used.count(t); ++t) {}  // the largest is INT_MAX (a file may say so)
+      }
       m_.groups[g].tag = t;
       used.insert(t);
     }

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <set>
 #include <sstream>
 #include <unistd.h>
 
@@ -371,4 +372,37 @@ TEST_CASE("bad input: one InputError naming the file and the problem") {
       CHECK(std::string(e.what()).find("/nonexistent/dir/x.msh: cannot open") == 0);
     }
   }
+}
+
+TEST_CASE("a line group keyed by its entity whose tag is taken, beside a physical tag INT_MAX: the smallest free tag") {
+  // "largest used + 1" overflowed when a file gave 2147483647 (found by fuzzing under UBSan).
+  const std::string text = R"($MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+2
+1 1 "bottom"
+1 2147483647 "right"
+$EndPhysicalNames
+$Nodes
+4
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+$EndNodes
+$Elements
+5
+1 1 2 1 1 1 2
+2 1 2 2147483647 2 2 3
+3 1 2 0 1 3 4
+4 1 2 1 1 4 1
+5 3 2 5 1 1 2 3 4
+$EndElements
+)";
+  Mesh m = from_text(text);
+  REQUIRE(m.groups.size() == 3);
+  std::set<int> tags;
+  for (const auto& g : m.groups) tags.insert(g.tag);
+  CHECK(tags == std::set<int>{1, 2, 2147483647});
 }
