@@ -4,6 +4,7 @@
 #   run-loop.sh --case CASE.json --mesh START.msh --p P --method lpcvt|bamg|fixed-fraction|uniform
 #               --mode feature|goal --steps N --growth G --out DIR
 #               [--maxdofs N] [--fraction F] [--ff-by FIELD] [--seed S] [--smooth-bamg yes|no]
+#               [--max-anisotropy A]
 #               [--pictures yes|no] [--window x0,x1,y0,y1] [--thesis-case KEY] [--check-only]
 #
 # Every input is checked, and every tool the method needs is looked up, BEFORE any work starts.
@@ -33,6 +34,7 @@ die() { echo "loop: error: $*" >&2; exit 2; }
 # The one set of loop defaults (Makefile.cases passes only what the user sets).
 CASE="" MESH="" P="" METHOD="" MODE="" STEPS="6" GROWTH="1.5" OUT="" MAXDOFS="0" FRACTION="0.3" FF_BY=""
 SEED="1" JITTER="0" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0 GEOMETRY="" ORDER=""
+MAX_ANISO=""  # size-solve --max-anisotropy; empty = its default (25)
 while [ $# -gt 0 ]; do
   opt="$1"
   case "$opt" in
@@ -46,7 +48,7 @@ while [ $# -gt 0 ]; do
     --maxdofs) MAXDOFS="$val" ;; --fraction) FRACTION="$val" ;; --ff-by) FF_BY="$val" ;;
     --seed) SEED="$val" ;; --jitter) JITTER="$val" ;; --smooth-bamg) SMOOTH_BAMG="$val" ;; --pictures) PICTURES="$val" ;;
     --window) WINDOW="$val" ;; --thesis-case) THESIS_KEY="$val" ;;
-    --geometry) GEOMETRY="$val" ;; --order) ORDER="$val" ;;
+    --geometry) GEOMETRY="$val" ;; --order) ORDER="$val" ;; --max-anisotropy) MAX_ANISO="$val" ;;
     *) die "unknown option $opt (see docs/loop.md)" ;;
   esac
 done
@@ -85,6 +87,8 @@ is_num "$FRACTION" && "$PY" -c "import sys; f=float('$FRACTION'); sys.exit(0 if 
   || die "FRACTION='$FRACTION': must be in (0, 1]"
 is_uint "$SEED" || die "SEED='$SEED': must be a non-negative integer"
 is_num "$JITTER" || die "JITTER='$JITTER': must be a non-negative number (lpcvt --jitter, target edges)"
+[ -z "$MAX_ANISO" ] || { is_num "$MAX_ANISO" && "$PY" -c "import sys; sys.exit(0 if float('$MAX_ANISO') >= 1 else 1)"; } \
+  || die "MAX_ANISOTROPY='$MAX_ANISO': must be a number >= 1 (size-solve --max-anisotropy, largest h1/h2)"
 [ -n "$OUT" ] || die "OUT is not set (the run directory)"
 case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
@@ -156,7 +160,8 @@ jit=()  # JITTER joins the run's parameters only when used (older runs have none
 [ "$JITTER" = 0 ] || jit=(jitter="$JITTER")
 msg="$(ctl params "$OUT/loop.json" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
   method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" ${jit[@]+"${jit[@]}"} \
-  smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} 2>&1)" || die "$msg"
+  smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} \
+  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} 2>&1)" || die "$msg"
 
 name="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
 say() { echo "[$name] $*"; }
@@ -313,10 +318,10 @@ while :; do
       if [ "$MODE" = goal ]; then
         run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" "$CASE" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
         run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" "$d/dwr.msh" -- \
-          size-solve "$d/shape.msh" --growth "$GROWTH" --dwr "$d/dwr.msh" -o "$d/frame.msh"
+          size-solve "$d/shape.msh" --growth "$GROWTH" --dwr "$d/dwr.msh" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} -o "$d/frame.msh"
       else
         run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" -- \
-          size-solve "$d/shape.msh" --growth "$GROWTH" -o "$d/frame.msh"
+          size-solve "$d/shape.msh" --growth "$GROWTH" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} -o "$d/frame.msh"
       fi
       if [ "$METHOD" = lpcvt ]; then
         run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED" --jitter "$JITTER" ${geo[@]+"${geo[@]}"}

@@ -53,6 +53,10 @@ tail -n 1 log3 | grep -q '\] Error 2$' || fail "make, bad METHOD: $(tail -n 1 lo
 rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --method simplex --out run-bad > log4 2>&1 || rc=$?
 [ $rc -eq 2 ] || fail "run-loop.sh, bad METHOD: exit $rc"
 [ ! -e run-bad ] || fail "bad input created the run directory"
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --max-anisotropy 0.5 --out run-bad > log4b 2>&1 || rc=$?
+[ $rc -eq 2 ] || fail "run-loop.sh, MAX_ANISOTROPY 0.5: exit $rc"
+grep -q "MAX_ANISOTROPY='0.5': must be a number >= 1" log4b || fail "MAX_ANISOTROPY 0.5: $(cat log4b)"
+[ ! -e run-bad ] || fail "bad MAX_ANISOTROPY created the run directory"
 
 # --- resume with a working refine: step-0 is not redone (same bytes, same times), the loop ends with 0
 sleep 1.1  # a recomputed file would get a later modification time
