@@ -5,6 +5,7 @@
 #include "io/vtu.hpp"
 #include "gmsh/geometry.hpp"
 #include "mesh/curve_boundary.hpp"
+#include "mesh/jitter.hpp"
 #include "mesh/validate.hpp"
 
 using namespace quadapt;
@@ -22,10 +23,14 @@ int main(int argc, char** argv) {
             "get geometric order q: boundary edges' control points on the curve, the others by the cells' transfinite "
             "blend of those displacements, else a smooth blend across cells (docs/curved.md); the report gives the minimum "
             "scaled Jacobian, and a folded cell is refused (--straight-fallback: it keeps straight boundary edges). "
-            "--order 1 without --geometry drops IN's curved geometry (the vertex view, fields kept).");
+            "--order 1 without --geometry drops IN's curved geometry (the vertex view, fields kept). --jitter J --seed S moves "
+            "every interior node at random by at most J times its shortest edge (boundary and hanging nodes stay, fields "
+            "are dropped): another start mesh for an adaptive loop, the same for the same seed (docs/loop.md, START_JITTER).");
   std::string in, out, require = "any", geometry;
   int order = 0;
   bool fallback = false;
+  JitterOptions jitter;
+  jitter.fraction = 0;
   tool.app().add_option("IN", in, "Input mesh (.msh)")->required()->check(CLI::ExistingFile);
   tool.app().add_option("-o,--output", out, "Output mesh: .msh (MSH 4.1 ASCII) or .vtu (VTK XML, ParaView)")->required();
   tool.app()
@@ -39,6 +44,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 4));
   tool.app().add_flag("--straight-fallback", fallback, "With --order >= 2: a cell that folds when curved keeps its "
                       "boundary edges straight (end nodes on the curve; reported as straight_edges) instead of the error");
+  tool.app().add_option("--jitter", jitter.fraction, "Move every interior node at random by at most this fraction of "
+                        "its shortest edge, in (0, 0.45] (straight-sided meshes; fields are dropped)")
+      ->check(CLI::Range(0.0, 0.45));
+  tool.app().add_option("--seed", jitter.seed, "Random seed of --jitter")->capture_default_str();
   return tool.run(argc, argv, [&] {
     tool.input(in);
     if (!geometry.empty()) tool.input(geometry);
@@ -58,6 +67,16 @@ int main(int argc, char** argv) {
       m = read_valid_msh(in, opt);
     }
     if (order == 1 && geometry.empty() && m.is_curved()) m.curved = CurvedGeometry{};
+    if (jitter.fraction > 0) {
+      if (g) throw InputError("", "--jitter and --geometry: jitter first, then snap and curve (two calls)");
+      const int moved = jitter_interior_nodes(m, jitter, in);
+      validate_mesh(m, in, opt);
+      tool.option("jitter", jitter.fraction);
+      tool.option("seed", static_cast<unsigned long long>(jitter.seed));
+      tool.report()["jittered_nodes"] = moved;
+      tool.log("jitter " + std::to_string(jitter.fraction) + " (seed " + std::to_string(jitter.seed) + "): " +
+               std::to_string(moved) + " interior nodes moved");
+    }
     if (g) {
       auto ph = tool.phase("curve");
       if (m.is_curved()) throw InputError(in, "the mesh is curved already; --geometry curves straight-sided meshes");

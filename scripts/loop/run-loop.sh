@@ -4,7 +4,7 @@
 #   run-loop.sh --case CASE.json --mesh START.msh --p P --method lpcvt|bamg|fixed-fraction|uniform
 #               --mode feature|goal --steps N --growth G --out DIR
 #               [--maxdofs N] [--fraction F] [--ff-by FIELD] [--seed S] [--smooth-bamg yes|no]
-#               [--max-anisotropy A]
+#               [--max-anisotropy A] [--start-jitter J]
 #               [--pictures yes|no] [--window x0,x1,y0,y1] [--thesis-case KEY] [--check-only]
 #
 # Every input is checked, and every tool the method needs is looked up, BEFORE any work starts.
@@ -35,6 +35,7 @@ die() { echo "loop: error: $*" >&2; exit 2; }
 CASE="" MESH="" P="" METHOD="" MODE="" STEPS="6" GROWTH="1.5" OUT="" MAXDOFS="0" FRACTION="0.3" FF_BY=""
 SEED="1" JITTER="0" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0 GEOMETRY="" ORDER=""
 MAX_ANISO=""  # size-solve --max-anisotropy; empty = its default (25)
+START_JITTER="0"  # > 0: the start mesh's interior nodes moved at random from SEED (meshconvert --jitter)
 while [ $# -gt 0 ]; do
   opt="$1"
   case "$opt" in
@@ -49,6 +50,7 @@ while [ $# -gt 0 ]; do
     --seed) SEED="$val" ;; --jitter) JITTER="$val" ;; --smooth-bamg) SMOOTH_BAMG="$val" ;; --pictures) PICTURES="$val" ;;
     --window) WINDOW="$val" ;; --thesis-case) THESIS_KEY="$val" ;;
     --geometry) GEOMETRY="$val" ;; --order) ORDER="$val" ;; --max-anisotropy) MAX_ANISO="$val" ;;
+    --start-jitter) START_JITTER="$val" ;;
     *) die "unknown option $opt (see docs/loop.md)" ;;
   esac
 done
@@ -89,6 +91,8 @@ is_uint "$SEED" || die "SEED='$SEED': must be a non-negative integer"
 is_num "$JITTER" || die "JITTER='$JITTER': must be a non-negative number (lpcvt --jitter, target edges)"
 [ -z "$MAX_ANISO" ] || { is_num "$MAX_ANISO" && "$PY" -c "import sys; sys.exit(0 if float('$MAX_ANISO') >= 1 else 1)"; } \
   || die "MAX_ANISOTROPY='$MAX_ANISO': must be a number >= 1 (size-solve --max-anisotropy, largest h1/h2)"
+is_num "$START_JITTER" && "$PY" -c "import sys; sys.exit(0 if float('$START_JITTER') <= 0.45 else 1)" \
+  || die "START_JITTER='$START_JITTER': must be a number in [0, 0.45] (meshconvert --jitter: the largest move over the shortest edge)"
 [ -n "$OUT" ] || die "OUT is not set (the run directory)"
 case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
@@ -105,7 +109,7 @@ fi
 
 # tools this loop needs
 tools=(dgsolve)
-[ -n "$GEOMETRY" ] && tools+=(meshconvert)
+if [ -n "$GEOMETRY" ] || [ "$START_JITTER" != 0 ]; then tools+=(meshconvert); fi
 case "$METHOD" in
   uniform) tools+=(refine) ;;
   fixed-fraction) if [ "$MODE" = goal ]; then tools+=(adjoint refine); else tools+=(estimate-frame refine); fi ;;
@@ -158,10 +162,12 @@ mesh_sum="$(sha256sum "$MESH" | cut -c1-16)"
 # STEPS and MAXDOFS only say where to stop: a finished run can be continued with more steps.
 jit=()  # JITTER joins the run's parameters only when used (older runs have none)
 [ "$JITTER" = 0 ] || jit=(jitter="$JITTER")
+sjit=()
+[ "$START_JITTER" = 0 ] || sjit=(start_jitter="$START_JITTER")
 msg="$(ctl params "$OUT/loop.json" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
   method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" ${jit[@]+"${jit[@]}"} \
   smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} \
-  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} 2>&1)" || die "$msg"
+  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} 2>&1)" || die "$msg"
 
 name="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
 say() { echo "[$name] $*"; }
@@ -225,6 +231,13 @@ link_into() {  # link_into SRC DST: DST = SRC (hard link, else copy), atomically
 
 say "CASE=$(basename "$CASE") P=$P METHOD=$METHOD MODE=$MODE STEPS=$STEPS GROWTH=$GROWTH MAXDOFS=$MAXDOFS -> $OUT"
 mkdir -p "$OUT/step-0"
+START="$MESH"
+if [ "$START_JITTER" != 0 ]; then
+  # another start: MESH's interior nodes moved at random from SEED (the same SEED, the same mesh)
+  run_tool "$OUT/step-0" jitter "$OUT/step-0/start-jittered.msh" "$MESH" -- \
+    meshconvert "$MESH" --jitter "$START_JITTER" --seed "$SEED" -o "$OUT/step-0/start-jittered.msh"
+  START="$OUT/step-0/start-jittered.msh"
+fi
 if [ -n "$GEOMETRY" ]; then
   # step-K/straight.msh: the straight-sided mesh with its boundary nodes on the true curves (what
   # refine and the frame tools work on); step-K/mesh.msh: the same cells of order ORDER (dgsolve's)
@@ -241,9 +254,9 @@ if [ -n "$GEOMETRY" ]; then
     fi
   }
   mkdir -p "$OUT/step-0/start"
-  if [ ! -s "$OUT/step-0/start/mesh.msh" ]; then link_into "$MESH" "$OUT/step-0/start/mesh.msh"; fi
+  if [ ! -s "$OUT/step-0/start/mesh.msh" ]; then link_into "$START" "$OUT/step-0/start/mesh.msh"; fi
   on_geometry "$OUT/step-0/start" "$OUT/step-0/start/mesh.msh" "$OUT/step-0"
-elif [ ! -s "$OUT/step-0/mesh.msh" ]; then link_into "$MESH" "$OUT/step-0/mesh.msh"; fi
+elif [ ! -s "$OUT/step-0/mesh.msh" ]; then link_into "$START" "$OUT/step-0/mesh.msh"; fi
 
 k=0
 last=0
