@@ -29,21 +29,32 @@ int main(int argc, char** argv) {
             "no fields. With --frame FRAME.msh (cell field Vinv, M = V^-1) the angles are measured "
             "in the frame's metric space (each node's star mapped by M at the node), which keeps "
             "the sizes of a mesh made for that frame (boundary layers). "
+            "--method shape (the default with --frame) fits every corner, mapped by the frame's "
+            "metric, to a square of the frame's size instead (a local/global least-squares fit: "
+            "right angles AND target edge lengths; no minimum-angle guarantee, only no inverted "
+            "cell; docs/quadsmooth.md). "
             "Report: sweeps, moves accepted/reduced/rejected, quality before/after.");
-  std::string in, out, frame_path;
+  std::string in, out, frame_path, method;
   SmoothOptions opt;
+  ShapeSmoothOptions shape;
+  int sweeps = -1;
   auto& app = tool.app();
   app.add_option("QUAD", in, "Input quad mesh (.msh)")->required()->check(CLI::ExistingFile);
   app.add_option("-o,--output", out, "Output mesh (.msh); report beside it as .json")->required();
-  app.add_option("--sweeps", opt.sweeps, "Smoothing sweeps over the interior nodes")
-      ->capture_default_str()
+  app.add_option("--sweeps", sweeps,
+                 "Smoothing sweeps over the interior nodes (default: 3 for angle, at most 100 for shape)")
       ->check(NonNegativeValue);
+  app.add_option("--method", method,
+                 "angle (Zhou & Shimada; the default without --frame) or shape (corner fit to the frame's "
+                 "squares; the default with --frame, needs it)")
+      ->check(CLI::IsMember({"angle", "shape"}));
   app.add_option("--halvings", opt.max_halvings, "Halvings of a rejected move before it is skipped")
       ->capture_default_str()
       ->check(NonNegativeValue);
-  app.add_option("--tolerance", opt.tolerance,
-                 "Stop when no node moves more than this fraction of its mean edge length")
-      ->capture_default_str()
+  double tolerance = -1;
+  app.add_option("--tolerance", tolerance,
+                 "Stop when no node moves more than this fraction of its mean edge length (default: 0 "
+                 "for angle, 1e-3 for shape)")
       ->check(NonNegativeValue);
   app.add_option("--frame", frame_path,
                  "Frame file (background mesh with the cell field Vinv): smooth in its metric space")
@@ -52,9 +63,16 @@ int main(int argc, char** argv) {
   return tool.run(argc, argv, [&] {
     tool.input(in);
     tool.output(out);
-    tool.option("sweeps", opt.sweeps);
+    if (method.empty()) method = frame_path.empty() ? "angle" : "shape";
+    if (method == "shape" && frame_path.empty())
+      throw InputError(in, "--method shape needs --frame FRAME.msh (the squares are the frame's)");
+    if (sweeps >= 0) opt.sweeps = shape.sweeps = sweeps;
+    if (tolerance >= 0) opt.tolerance = shape.tolerance = tolerance;
+    shape.max_halvings = opt.max_halvings;
+    tool.option("method", method);
+    tool.option("sweeps", method == "shape" ? shape.sweeps : opt.sweeps);
     tool.option("halvings", opt.max_halvings);
-    tool.option("tolerance", opt.tolerance);
+    tool.option("tolerance", method == "shape" ? shape.tolerance : opt.tolerance);
     if (!frame_path.empty()) tool.input(frame_path);
     tool.option("space", frame_path.empty() ? "physical" : "metric");
     Mesh m;
@@ -77,7 +95,12 @@ int main(int argc, char** argv) {
         sampler = std::make_unique<FrameSampler>(frame);  // reflections removed: det M > 0
         metric = [&](const Vec2& x) { return sampler->at(x); };
       }
-      st = angle_smooth(m, opt, metric);
+      if (method == "shape") {
+        shape.target_edge = 1 / Frame::cell_metric_factor();  // the frame's edge in the units of M
+        st = shape_smooth(m, shape, metric);
+      } else {
+        st = angle_smooth(m, opt, metric);
+      }
     }
     const QualitySummary after = quality_summary(m);
     auto& rep = tool.report();

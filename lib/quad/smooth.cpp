@@ -60,45 +60,81 @@ LocalQuality cells_quality(const Mesh& m, const std::vector<int>& cells, const M
     }
   return q;
 }
-}  // namespace
 
-SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt, const NodeMetric& metric) {
-  SmoothStats st;
-  const int nn = m.num_nodes();
-  std::vector<char> fixed = boundary_node_flags(m);
-  std::vector<std::vector<int>> node_cells(nn);
+// The stars of the nodes: cells around each node, the two cells of each edge, the edge
+// neighbours of each node (deterministic order) and the fixed nodes (on a free edge, hanging,
+// or in no cell).
+struct Topology {
+  std::vector<char> fixed;
+  std::vector<std::vector<int>> node_cells, nbrs;
   std::unordered_map<std::uint64_t, EdgeCells> edges;
-  edges.reserve(4 * m.cells.size());
-  auto ukey = [](int a, int b) {
+  static std::uint64_t key(int a, int b) {
     if (a > b) std::swap(a, b);
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-  };
+  }
+  const EdgeCells& edge(int a, int b) const { return edges.at(key(a, b)); }
+};
+
+Topology build_topology(const Mesh& m) {
+  Topology t;
+  const int nn = m.num_nodes();
+  t.fixed = boundary_node_flags(m);
+  t.node_cells.resize(nn);
+  t.nbrs.resize(nn);
+  t.edges.reserve(4 * m.cells.size());
   for (int c = 0; c < m.num_cells(); ++c) {
     const Cell& cell = m.cells[c];
     for (int k = 0; k < cell.nv; ++k) {
-      node_cells[cell.v[k]].push_back(c);
-      auto& e = edges[ukey(cell.v[k], cell.v[(k + 1) % cell.nv])];
+      t.node_cells[cell.v[k]].push_back(c);
+      auto& e = t.edges[Topology::key(cell.v[k], cell.v[(k + 1) % cell.nv])];
       if (e.a < 0) e.a = c;
       else if (e.b < 0) e.b = c;
       else throw InputError("mesh: an edge is shared by more than two cells");
     }
   }
-  // Edge neighbours of each node, in a deterministic order.
-  std::vector<std::vector<int>> nbrs(nn);
   for (int v = 0; v < nn; ++v) {
-    for (int c : node_cells[v]) {
+    for (int c : t.node_cells[v]) {
       const Cell& cell = m.cells[c];
       int k = local_index(cell, v);
       for (int w : {cell.v[(k + 1) % cell.nv], cell.v[(k + cell.nv - 1) % cell.nv]})
-        if (std::find(nbrs[v].begin(), nbrs[v].end(), w) == nbrs[v].end()) nbrs[v].push_back(w);
+        if (std::find(t.nbrs[v].begin(), t.nbrs[v].end(), w) == t.nbrs[v].end()) t.nbrs[v].push_back(w);
     }
     // A node with an edge that has a single cell is on the boundary (or a hanging node).
-    for (int w : nbrs[v]) {
-      const auto& e = edges[ukey(v, w)];
-      if (e.b < 0) fixed[v] = 1;
-    }
-    if (node_cells[v].empty()) fixed[v] = 1;
+    for (int w : t.nbrs[v])
+      if (t.edge(v, w).b < 0) t.fixed[v] = 1;
+    if (t.node_cells[v].empty()) t.fixed[v] = 1;
   }
+  return t;
+}
+
+// Moves node i from xi by step, halving it (up to max_halvings times) until every cell around i
+// that was valid stays valid and accept(f) holds; restores xi and returns -1 when no trial
+// passes, else the number of halvings.
+template <class Accept>
+int guarded_move(Mesh& m, int i, const Vec2& xi, const Vec2& step, const std::vector<int>& cells,
+                 int max_halvings, Accept&& accept) {
+  std::vector<char> was_valid(cells.size());
+  for (size_t k = 0; k < cells.size(); ++k) was_valid[k] = cell_valid(m, m.cells[cells[k]]);
+  double f = 1.0;
+  for (int h = 0; h <= max_halvings; ++h, f *= 0.5) {
+    m.nodes[i] = xi + f * step;
+    bool ok = true;
+    for (size_t k = 0; k < cells.size() && ok; ++k)
+      if (was_valid[k] && !cell_valid(m, m.cells[cells[k]])) ok = false;
+    if (ok && accept()) return h;
+  }
+  m.nodes[i] = xi;
+  return -1;
+}
+}  // namespace
+
+SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt, const NodeMetric& metric) {
+  SmoothStats st;
+  const int nn = m.num_nodes();
+  const Topology topo = build_topology(m);
+  const std::vector<char>& fixed = topo.fixed;
+  const auto& node_cells = topo.node_cells;
+  const auto& nbrs = topo.nbrs;
   for (int v = 0; v < nn; ++v) st.interior_nodes += fixed[v] ? 0 : 1;
 
   st.min_angle_before = quality_summary(m).min_angle_deg;
@@ -114,7 +150,7 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt, const NodeMetric& me
       double size = 0;
       int n = 0;
       for (int j : nbrs[i]) {
-        const auto& e = edges[ukey(i, j)];
+        const auto& e = topo.edge(i, j);
         const Cell& A = m.cells[e.a];
         const Cell& B = m.cells[e.b];
         const int ka = local_index(A, j), kb = local_index(B, j);
@@ -135,29 +171,89 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt, const NodeMetric& me
       const Vec2 step = sum / n - xi;
       if (!(step.norm() > 0) || !std::isfinite(step.x()) || !std::isfinite(step.y())) continue;
       const auto& cells = node_cells[i];
-      std::vector<char> was_valid(cells.size());
-      for (size_t k = 0; k < cells.size(); ++k) was_valid[k] = cell_valid(m, m.cells[cells[k]]);
       const LocalQuality before = cells_quality(m, cells, T);
-      bool accepted = false;
-      double f = 1.0;
-      for (int h = 0; h <= opt.max_halvings; ++h, f *= 0.5) {
-        m.nodes[i] = xi + f * step;
-        bool ok = true;
-        for (size_t k = 0; k < cells.size() && ok; ++k)
-          if (was_valid[k] && !cell_valid(m, m.cells[cells[k]])) ok = false;
-        const LocalQuality after = ok ? cells_quality(m, cells, T) : LocalQuality{};
-        if (ok && after.angle >= before.angle && after.sine >= std::min(before.sine, opt.min_sine)) {
-          accepted = true;
-          (h == 0 ? st.moves_full : st.moves_reduced)++;
-          st.max_displacement = std::max(st.max_displacement, f * step.norm());
-          max_rel = std::max(max_rel, f * step.norm() / size);
-          break;
+      const int h = guarded_move(m, i, xi, step, cells, opt.max_halvings, [&] {
+        const LocalQuality after = cells_quality(m, cells, T);
+        return after.angle >= before.angle && after.sine >= std::min(before.sine, opt.min_sine);
+      });
+      if (h < 0) {
+        ++st.moves_rejected;
+        continue;
+      }
+      (h == 0 ? st.moves_full : st.moves_reduced)++;
+      const double f = std::ldexp(1.0, -h);
+      st.max_displacement = std::max(st.max_displacement, f * step.norm());
+      max_rel = std::max(max_rel, f * step.norm() / size);
+    }
+    ++st.sweeps;
+    if (max_rel <= opt.tolerance) break;
+  }
+  st.min_angle_after = quality_summary(m).min_angle_deg;
+  return st;
+}
+
+SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetric& metric) {
+  SmoothStats st;
+  const int nn = m.num_nodes();
+  const Topology topo = build_topology(m);
+  for (int v = 0; v < nn; ++v) st.interior_nodes += topo.fixed[v] ? 0 : 1;
+  const double lo = opt.size_min * opt.target_edge, hi = opt.size_max * opt.target_edge;
+  // ideal corner edges (next, previous), counter-clockwise: a square's and an equilateral triangle's
+  const Vec2 quad_e1(0, 1), tri_e1(0.5, std::sqrt(3.0) / 2);
+  std::vector<Vec2> pred;
+  st.min_angle_before = quality_summary(m).min_angle_deg;
+  for (int sweep = 0; sweep < opt.sweeps; ++sweep) {
+    double max_rel = 0;
+    for (int i = 0; i < nn; ++i) {
+      if (topo.fixed[i]) continue;
+      const Vec2 xi = m.nodes[i];
+      const Mat2 T = metric ? metric(xi) : Mat2::Identity();
+      const Mat2 Tinv = T.inverse();
+      pred.clear();
+      double size = 0;
+      int nsize = 0;
+      for (int c : topo.node_cells[i]) {
+        const Cell& cell = m.cells[c];
+        const int n = cell.nv, k = local_index(cell, i);
+        const Vec2& e1 = n == 3 ? tri_e1 : quad_e1;
+        for (int j : {k, (k + n - 1) % n, (k + 1) % n}) {
+          // corner j: a0 = T (x_next - x_j), a1 = T (x_prev - x_j); the similarity z (complex)
+          // with z e0 ~ a0, z e1 ~ a1, e0 = 1, in the least-squares sense: z = (a0 + conj(e1) a1) / 2
+          const Vec2& xj = m.nodes[cell.v[j]];
+          const Vec2& xn = m.nodes[cell.v[(j + 1) % n]];
+          const Vec2& xp = m.nodes[cell.v[(j + n - 1) % n]];
+          const Vec2 a0 = T * (xn - xj), a1 = T * (xp - xj);
+          Vec2 z(0.5 * (a0.x() + e1.x() * a1.x() + e1.y() * a1.y()), 0.5 * (a0.y() + e1.x() * a1.y() - e1.y() * a1.x()));
+          const double r = z.norm();
+          if (!(r > 0) || !std::isfinite(r)) continue;
+          z *= std::clamp(r, lo, hi) / r;
+          const Vec2 b0 = z, b1(z.x() * e1.x() - z.y() * e1.y(), z.x() * e1.y() + z.y() * e1.x());
+          if (j == k) {
+            pred.push_back(xn - Tinv * b0);
+            pred.push_back(xp - Tinv * b1);
+            size += (xn - xi).norm() + (xp - xi).norm();
+            nsize += 2;
+          } else if (j == (k + n - 1) % n) {  // i is the next node of corner j
+            pred.push_back(xj + Tinv * b0);
+          } else {  // i is the previous node of corner j
+            pred.push_back(xj + Tinv * b1);
+          }
         }
       }
-      if (!accepted) {
-        m.nodes[i] = xi;
+      if (pred.empty() || nsize == 0) continue;
+      Vec2 target = Vec2::Zero();
+      for (const Vec2& p : pred) target += p;
+      const Vec2 step = target / static_cast<double>(pred.size()) - xi;
+      if (!(step.norm() > 0) || !std::isfinite(step.x()) || !std::isfinite(step.y())) continue;
+      const int h = guarded_move(m, i, xi, step, topo.node_cells[i], opt.max_halvings, [] { return true; });
+      if (h < 0) {
         ++st.moves_rejected;
+        continue;
       }
+      (h == 0 ? st.moves_full : st.moves_reduced)++;
+      const double f = std::ldexp(1.0, -h);
+      st.max_displacement = std::max(st.max_displacement, f * step.norm());
+      max_rel = std::max(max_rel, f * step.norm() / (size / nsize));
     }
     ++st.sweeps;
     if (max_rel <= opt.tolerance) break;

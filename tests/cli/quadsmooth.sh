@@ -72,4 +72,30 @@ set -e
 [ $rc2 = 2 ] || fail "inverted cell: exit $rc2"
 grep -qi "invert" "$T/err2" || fail "inverted cell: message: $(cat "$T/err2")"
 [ ! -e "$T/bad.msh" ] && [ ! -e "$T/bad2.msh" ] || fail "output written on bad input"
+# --- with --frame the default is the shape fit in the frame's metric (docs/quadsmooth.md): the
+# report names it, the mean metric angle deviation falls, no cell inverts; --method angle is the
+# Zhou-Shimada smoothing; --method shape without a frame is bad input (exit 2, nothing written)
+python3 "$SRC/tests/cli/lpcvt_frame.py" "$T/frame.msh" --n 8 --h1 0.02 --h2 0.02 --theta 0.5
+quadsmooth -q "$IN" --frame "$T/frame.msh" -o "$T/fs.msh"
+quadsmooth -q "$IN" --frame "$T/frame.msh" --method angle -o "$T/fa.msh"
+for f in "$IN" fs fa; do
+  g="$f"; [ "$f" = "$IN" ] || g="$T/$f.msh"
+  meshquality "$g" --frame "$T/frame.msh" > "$T/$(basename "$g" .msh).q.json"
+done
+python3 - "$T/fs.json" "$T/lq.q.json" "$T/fs.q.json" "$T/fa.q.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1])); q0, qs, qa = (json.load(open(f))["metric"] for f in sys.argv[2:])
+def req(c, m):
+    if not c: sys.exit("FAIL: " + m)
+req(r["options"]["method"] == "shape", "default method with --frame: %s" % r["options"]["method"])
+d0, ds, da = (q["quad_angle_deviation_mean_deg"] for q in (q0, qs, qa))
+req(ds < d0, "shape fit: metric angle deviation %g -> %g" % (d0, ds))
+req(r["quality"]["inverted"] == 0, "shape fit: inverted cells")
+print("ok: metric angle deviation %.2f -> %.2f (shape), %.2f (angle)" % (d0, ds, da))
+PY
+set +e
+quadsmooth -q "$IN" --method shape -o "$T/bad3.msh" 2>"$T/err3"; rc3=$?
+set -e
+[ $rc3 = 2 ] || fail "--method shape without --frame: exit $rc3"
+[ ! -e "$T/bad3.msh" ] || fail "--method shape without --frame: output written"
 echo "quadsmooth: all checks passed"
