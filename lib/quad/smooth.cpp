@@ -200,16 +200,25 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
   const double lo = opt.size_min * opt.target_edge, hi = opt.size_max * opt.target_edge;
   // ideal corner edges (next, previous), counter-clockwise: a square's and an equilateral triangle's
   const Vec2 quad_e1(0, 1), tri_e1(0.5, std::sqrt(3.0) / 2);
-  std::vector<Vec2> pred;
+  std::vector<Mat2> node_T(nn, Mat2::Identity());
   st.min_angle_before = quality_summary(m).min_angle_deg;
   for (int sweep = 0; sweep < opt.sweeps; ++sweep) {
     double max_rel = 0;
+    if (metric)  // each corner is fitted in the metric at its own node (frozen for the sweep)
+      for (int v = 0; v < nn; ++v)
+        if (!topo.node_cells[v].empty()) node_T[v] = metric(m.nodes[v]);
     for (int i = 0; i < nn; ++i) {
       if (topo.fixed[i]) continue;
       const Vec2 xi = m.nodes[i];
-      const Mat2 T = metric ? metric(xi) : Mat2::Identity();
-      const Mat2 Tinv = T.inverse();
-      pred.clear();
+      const Mat2& T = node_T[i];
+      // normal equations of sum over the corner terms |T_j (x_i - x_ref) - b|^2 in x_i
+      Mat2 A = Mat2::Zero();
+      Vec2 rhs = Vec2::Zero();
+      auto term = [&](const Mat2& Tj, const Vec2& xref, const Vec2& b) {
+        const Mat2 G = Tj.transpose() * Tj;
+        A += G;
+        rhs += G * xref + Tj.transpose() * b;
+      };
       double size = 0;
       int nsize = 0;
       for (int c : topo.node_cells[i]) {
@@ -222,30 +231,35 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
           const Vec2& xj = m.nodes[cell.v[j]];
           const Vec2& xn = m.nodes[cell.v[(j + 1) % n]];
           const Vec2& xp = m.nodes[cell.v[(j + n - 1) % n]];
-          const Vec2 a0 = T * (xn - xj), a1 = T * (xp - xj);
+          const Mat2& Tj = node_T[cell.v[j]];
+          const Vec2 a0 = Tj * (xn - xj), a1 = Tj * (xp - xj);
           Vec2 z(0.5 * (a0.x() + e1.x() * a1.x() + e1.y() * a1.y()), 0.5 * (a0.y() + e1.x() * a1.y() - e1.y() * a1.x()));
           const double r = z.norm();
           if (!(r > 0) || !std::isfinite(r)) continue;
           z *= std::clamp(r, lo, hi) / r;
           const Vec2 b0 = z, b1(z.x() * e1.x() - z.y() * e1.y(), z.x() * e1.y() + z.y() * e1.x());
-          if (j == k) {
-            pred.push_back(xn - Tinv * b0);
-            pred.push_back(xp - Tinv * b1);
+          if (j == k) {  // |T_i (x_n - x_i) - b0|^2 + |T_i (x_p - x_i) - b1|^2
+            term(Tj, xn, -b0);
+            term(Tj, xp, -b1);
             size += (xn - xi).norm() + (xp - xi).norm();
             nsize += 2;
-          } else if (j == (k + n - 1) % n) {  // i is the next node of corner j
-            pred.push_back(xj + Tinv * b0);
+          } else if (j == (k + n - 1) % n) {  // i is the next node of corner j: |T_j (x_i - x_j) - b0|^2
+            term(Tj, xj, b0);
           } else {  // i is the previous node of corner j
-            pred.push_back(xj + Tinv * b1);
+            term(Tj, xj, b1);
           }
         }
       }
-      if (pred.empty() || nsize == 0) continue;
-      Vec2 target = Vec2::Zero();
-      for (const Vec2& p : pred) target += p;
-      const Vec2 step = target / static_cast<double>(pred.size()) - xi;
+      if (nsize == 0 || !(A.determinant() > 0)) continue;
+      const Vec2 step = A.inverse() * rhs - xi;
       if (!(step.norm() > 0) || !std::isfinite(step.x()) || !std::isfinite(step.y())) continue;
-      const int h = guarded_move(m, i, xi, step, topo.node_cells[i], opt.max_halvings, [] { return true; });
+      const auto& cells = topo.node_cells[i];
+      const LocalQuality before = cells_quality(m, cells, T), before_phys = cells_quality(m, cells, Mat2::Identity());
+      const int h = guarded_move(m, i, xi, step, cells, opt.max_halvings, [&] {
+        const LocalQuality after = cells_quality(m, cells, T), after_phys = cells_quality(m, cells, Mat2::Identity());
+        return after.sine >= std::min(before.sine, opt.min_sine) &&
+               after_phys.sine >= std::min(before_phys.sine, opt.min_sine_physical);
+      });
       if (h < 0) {
         ++st.moves_rejected;
         continue;

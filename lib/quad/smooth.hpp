@@ -67,31 +67,38 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt = {}, const NodeMetri
 /// Corner-similarity smoothing in the metric (issue #14; the default of quadsmooth --frame).
 ///
 /// The target of a quad is the unit square of the metric, of a triangle the equilateral one.
-/// For a corner at x_j with next node x_n and previous node x_p (counter-clockwise) mapped by
-/// T (the node's metric, as in angle_smooth), a0 = T (x_n - x_j), a1 = T (x_p - x_j), the best
-/// similarity z (a complex number: rotation and scale) with z e0 ~ a0, z e1 ~ a1 (e0 = 1;
-/// e1 = i for a quad corner, e^{i pi/3} for a triangle's) in the least-squares sense is
+/// Every corner is fitted in the metric at its own node: for a corner at x_j with next node x_n
+/// and previous node x_p (counter-clockwise), T_j = metric(x_j) (evaluated once per sweep),
+/// a0 = T_j (x_n - x_j), a1 = T_j (x_p - x_j), the best similarity z (a complex number:
+/// rotation and scale) with z e0 ~ a0, z e1 ~ a1 (e0 = 1; e1 = i for a quad corner, e^{i pi/3}
+/// for a triangle's) in the least-squares sense is
 ///     z = (a0 + conj(e1) a1) / 2,
-/// its modulus clamped to [size_min, size_max] * target_edge. Node i then moves to the mean of
-/// the positions each corner it takes part in asks for: for its own corners x_n - T^-1 z e0 and
-/// x_p - T^-1 z e1, for a neighbour's corner j where i is next (previous) x_j + T^-1 z e0
-/// (x_j + T^-1 z e1). With z fixed this is the minimiser over x_i of the sum over those corners
-/// of |a0 - z e0|^2 + |a1 - z e1|^2 — one Gauss-Seidel step of a local/global ("as rigid as
+/// its modulus clamped to [size_min, size_max] * target_edge. With every z fixed, node i moves
+/// to the minimiser of the sum, over the corners it takes part in, of |a0 - z e0|^2 +
+/// |a1 - z e1|^2 (quadratic in x_i: a 2x2 system; in a constant metric the mean of the
+/// positions each corner asks for) — one Gauss-Seidel step of a local/global ("as rigid as
 /// possible") fit of every corner to a square of the target size: it straightens corners AND
 /// keeps edge lengths near the target, where angle_smooth only balances angles (and lets
 /// lengths drift: on the constant 20:1 frames of docs/quad-quality.md, 10 angle sweeps lower
-/// the edges in band from 95 % to 92 %).
-/// Guard: a move that would invert a cell that was valid (physical space) is halved, up to
-/// max_halvings times, else skipped. No minimum-angle guarantee (unlike angle_smooth): the
-/// mesh's worst corner can get worse where that makes the others square. Nodes in index order
-/// (deterministic); boundary and hanging nodes fixed.
+/// the edges in band from 95 % to 92 %). (Fitting every corner of node i's star in i's own
+/// metric instead — an energy that changes with the node being moved — cost the S-shock loop
+/// 1.6x in L2 error; with each corner in its own metric the loop's error falls, docs/quadsmooth.md.)
+/// Guard (as angle_smooth's, without its minimum-angle rule): a move is accepted only if no cell
+/// around the node that was valid inverts and the smallest corner sine of those cells does not
+/// fall below min(its old value, min_sine) in node i's metric space, nor below min(its old
+/// value, min_sine_physical) in physical space; otherwise it is halved, up to max_halvings
+/// times, else skipped. (Without the physical rule the S-shock loop's graded frames got cells
+/// of corner angle 0.0 degrees.) Nodes in index order (deterministic); boundary and hanging
+/// nodes fixed.
 struct ShapeSmoothOptions {
   int sweeps = 100;           ///< Gauss-Seidel passes at most
   double tolerance = 1e-3;    ///< stop when no node moves more than this times its mean edge length
   double target_edge = 1;     ///< ideal edge length in the metric space of `metric`
   double size_min = 0.85;     ///< the fitted scale is clamped to [size_min, size_max] * target_edge
   double size_max = 1.15;
-  int max_halvings = 4;       ///< a move that inverts a cell is halved at most this many times
+  int max_halvings = 4;       ///< a rejected move is halved at most this many times
+  double min_sine = 0.5;      ///< a move may lower the local minimum metric corner sine only while it stays above this
+  double min_sine_physical = 0.05; ///< the same in physical space
 };
 
 /// Smooths m in place (conforming quad, triangle or mixed mesh, cells counter-clockwise) by the
