@@ -61,6 +61,22 @@ LocalQuality cells_quality(const Mesh& m, const std::vector<int>& cells, const M
   return q;
 }
 
+// Smallest corner sine (the scaled Jacobian; negative at a reflex corner) over the cells, after
+// the map T: sin(angle) = cross(e_next, e_prev) / (|e_next| |e_prev|), no trigonometry.
+double cells_min_sine(const Mesh& m, const std::vector<int>& cells, const Mat2& T) {
+  double s = 1e300;
+  for (int c : cells) {
+    const Cell& cell = m.cells[c];
+    for (int k = 0; k < cell.nv; ++k) {
+      const Vec2& p = m.nodes[cell.v[k]];
+      const Vec2 en = T * (m.nodes[cell.v[(k + 1) % cell.nv]] - p), ep = T * (m.nodes[cell.v[(k + cell.nv - 1) % cell.nv]] - p);
+      const double d = en.norm() * ep.norm();
+      s = std::min(s, d > 0 ? cross2(en, ep) / d : -1.0);
+    }
+  }
+  return s;
+}
+
 // The stars of the nodes: cells around each node, the two cells of each edge, the edge
 // neighbours of each node (deterministic order) and the fixed nodes (on a free edge, hanging,
 // or in no cell).
@@ -201,14 +217,17 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
   // ideal corner edges (next, previous), counter-clockwise: a square's and an equilateral triangle's
   const Vec2 quad_e1(0, 1), tri_e1(0.5, std::sqrt(3.0) / 2);
   std::vector<Mat2> node_T(nn, Mat2::Identity());
+  // nodes to visit in a sweep: all in the first, then those with a cell-mate (or themselves)
+  // that moved more than the tolerance in the sweep before (the others' fits are unchanged)
+  std::vector<char> active(nn, 1), next(nn, 0);
   st.min_angle_before = quality_summary(m).min_angle_deg;
   for (int sweep = 0; sweep < opt.sweeps; ++sweep) {
-    double max_rel = 0;
+    bool any = false;
     if (metric)  // each corner is fitted in the metric at its own node (frozen for the sweep)
       for (int v = 0; v < nn; ++v)
         if (!topo.node_cells[v].empty()) node_T[v] = metric(m.nodes[v]);
     for (int i = 0; i < nn; ++i) {
-      if (topo.fixed[i]) continue;
+      if (topo.fixed[i] || !active[i]) continue;
       const Vec2 xi = m.nodes[i];
       const Mat2& T = node_T[i];
       // normal equations of sum over the corner terms |T_j (x_i - x_ref) - b|^2 in x_i
@@ -254,11 +273,11 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
       const Vec2 step = A.inverse() * rhs - xi;
       if (!(step.norm() > 0) || !std::isfinite(step.x()) || !std::isfinite(step.y())) continue;
       const auto& cells = topo.node_cells[i];
-      const LocalQuality before = cells_quality(m, cells, T), before_phys = cells_quality(m, cells, Mat2::Identity());
+      const Mat2 I = Mat2::Identity();
+      const double before = cells_min_sine(m, cells, T), before_phys = cells_min_sine(m, cells, I);
       const int h = guarded_move(m, i, xi, step, cells, opt.max_halvings, [&] {
-        const LocalQuality after = cells_quality(m, cells, T), after_phys = cells_quality(m, cells, Mat2::Identity());
-        return after.sine >= std::min(before.sine, opt.min_sine) &&
-               after_phys.sine >= std::min(before_phys.sine, opt.min_sine_physical);
+        return cells_min_sine(m, cells, T) >= std::min(before, opt.min_sine) &&
+               cells_min_sine(m, cells, I) >= std::min(before_phys, opt.min_sine_physical);
       });
       if (h < 0) {
         ++st.moves_rejected;
@@ -267,10 +286,16 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
       (h == 0 ? st.moves_full : st.moves_reduced)++;
       const double f = std::ldexp(1.0, -h);
       st.max_displacement = std::max(st.max_displacement, f * step.norm());
-      max_rel = std::max(max_rel, f * step.norm() / (size / nsize));
+      if (f * step.norm() > opt.tolerance * (size / nsize)) {
+        any = true;
+        for (int c : cells)
+          for (int k = 0; k < m.cells[c].nv; ++k) next[m.cells[c].v[k]] = 1;
+      }
     }
     ++st.sweeps;
-    if (max_rel <= opt.tolerance) break;
+    if (!any) break;
+    active.swap(next);
+    std::fill(next.begin(), next.end(), 0);
   }
   st.min_angle_after = quality_summary(m).min_angle_deg;
   return st;

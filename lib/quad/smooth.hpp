@@ -91,8 +91,10 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt = {}, const NodeMetri
 /// of corner angle 0.0 degrees.) Nodes in index order (deterministic); boundary and hanging
 /// nodes fixed.
 struct ShapeSmoothOptions {
-  int sweeps = 100;           ///< Gauss-Seidel passes at most
-  double tolerance = 1e-3;    ///< stop when no node moves more than this times its mean edge length
+  int sweeps = 30;            ///< Gauss-Seidel passes at most
+  /// a node is visited again only while a node of its cells moved more than this times its mean
+  /// edge length in the sweep before; stop when none did
+  double tolerance = 1e-3;
   double target_edge = 1;     ///< ideal edge length in the metric space of `metric`
   double size_min = 0.85;     ///< the fitted scale is clamped to [size_min, size_max] * target_edge
   double size_max = 1.15;
