@@ -142,6 +142,19 @@ int guarded_move(Mesh& m, int i, const Vec2& xi, const Vec2& step, const std::ve
   m.nodes[i] = xi;
   return -1;
 }
+
+// Counts a guarded_move in st (h: its halvings, -1 rejected); returns the length moved, -1 when
+// rejected.
+double count_move(SmoothStats& st, int h, const Vec2& step) {
+  if (h < 0) {
+    ++st.moves_rejected;
+    return -1;
+  }
+  (h == 0 ? st.moves_full : st.moves_reduced)++;
+  const double d = std::ldexp(1.0, -h) * step.norm();
+  st.max_displacement = std::max(st.max_displacement, d);
+  return d;
+}
 }  // namespace
 
 SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt, const NodeMetric& metric) {
@@ -192,14 +205,9 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt, const NodeMetric& me
         const LocalQuality after = cells_quality(m, cells, T);
         return after.angle >= before.angle && after.sine >= std::min(before.sine, opt.min_sine);
       });
-      if (h < 0) {
-        ++st.moves_rejected;
-        continue;
-      }
-      (h == 0 ? st.moves_full : st.moves_reduced)++;
-      const double f = std::ldexp(1.0, -h);
-      st.max_displacement = std::max(st.max_displacement, f * step.norm());
-      max_rel = std::max(max_rel, f * step.norm() / size);
+      const double d = count_move(st, h, step);
+      if (d < 0) continue;
+      max_rel = std::max(max_rel, d / size);
     }
     ++st.sweeps;
     if (max_rel <= opt.tolerance) break;
@@ -279,14 +287,9 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
         return cells_min_sine(m, cells, T) >= std::min(before, opt.min_sine) &&
                cells_min_sine(m, cells, I) >= std::min(before_phys, opt.min_sine_physical);
       });
-      if (h < 0) {
-        ++st.moves_rejected;
-        continue;
-      }
-      (h == 0 ? st.moves_full : st.moves_reduced)++;
-      const double f = std::ldexp(1.0, -h);
-      st.max_displacement = std::max(st.max_displacement, f * step.norm());
-      if (f * step.norm() > opt.tolerance * (size / nsize)) {
+      const double d = count_move(st, h, step);
+      if (d < 0) continue;
+      if (d > opt.tolerance * (size / nsize)) {
         any = true;
         for (int c : cells)
           for (int k = 0; k < m.cells[c].nv; ++k) next[m.cells[c].v[k]] = 1;
