@@ -80,7 +80,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(PositiveValue);
   app.add_option("--weight", opt.lbfgs.gamma, "Energy weight |det M|^gamma: 1 = one point per unit metric area in "
                  "graded frames; 0 = the thesis's energy (--analytic's default)")->capture_default_str();
-  app.add_flag("--precondition", opt.lbfgs.precondition, "Scale every site's variables by its local frame");
+  app.add_flag("--precondition", opt.lbfgs.precondition, "Scale every site's variables by its local frame (frames' "
+               "default; --precondition=false: off, --analytic's default)");
   app.add_option("--delta", opt.lbfgs.delta, "Stop when the energy falls by less than this (relative) over --past iterations (1e-10 with --analytic)")
       ->capture_default_str();
   app.add_option("--past", opt.lbfgs.past, "Iterations of the --delta and --move-tol tests (5 with --analytic)")->capture_default_str();

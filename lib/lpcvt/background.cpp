@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 #include "core/error.hpp"
 #include "frame/frame.hpp"
@@ -112,8 +113,33 @@ void Background::build(const Mesh& m) {
       mesh_.boundary.push_back(be);
     }
   }
-  // Bucket grid: about one cell per bucket.
+  // Cell adjacency (locate_near's walk): edges matched by their end points' coordinates.
   const int n = static_cast<int>(cells_.size());
+  {
+    struct End {
+      double ax, ay, bx, by;
+      int cell, edge;
+    };
+    std::vector<End> ends;
+    ends.reserve(4 * static_cast<size_t>(n));
+    for (int c = 0; c < n; ++c)
+      for (int k = 0; k < cells_[c].nv; ++k) {
+        Vec2 a = cells_[c].v[k], b = cells_[c].v[(k + 1) % cells_[c].nv];
+        if (std::make_pair(b.x(), b.y()) < std::make_pair(a.x(), a.y())) std::swap(a, b);
+        ends.push_back({a.x(), a.y(), b.x(), b.y(), c, k});
+      }
+    auto key = [](const End& e) { return std::make_tuple(e.ax, e.ay, e.bx, e.by); };
+    std::sort(ends.begin(), ends.end(), [&](const End& l, const End& r) {
+      return key(l) != key(r) ? key(l) < key(r) : std::make_pair(l.cell, l.edge) < std::make_pair(r.cell, r.edge);
+    });
+    across_.assign(n, {-1, -1, -1, -1});
+    for (size_t k = 0; k + 1 < ends.size(); ++k)
+      if (key(ends[k]) == key(ends[k + 1]) && (k + 2 == ends.size() || key(ends[k + 2]) != key(ends[k]))) {
+        across_[ends[k].cell][ends[k].edge] = ends[k + 1].cell;
+        across_[ends[k + 1].cell][ends[k + 1].edge] = ends[k].cell;
+      }
+  }
+  // Bucket grid: about one cell per bucket.
   Vec2 ext = (hi_ - lo_).cwiseMax(Vec2::Constant(1e-300));
   double aspect = ext.x() / ext.y();
   nx_ = std::clamp(static_cast<int>(std::ceil(std::sqrt(n * aspect))), 1, 4096);
@@ -296,6 +322,33 @@ void Background::metric_derivs(int c, const Vec2& y, Mat2& M, Mat2& d0, Mat2& d1
 int Background::locate(const Vec2& y, int hint) const {
   if (hint >= 0 && hint < num_cells() && in_convex_polygon(cells_[hint].v, cells_[hint].nv, y, tol_))
     return hint;
+  return locate_buckets(y);
+}
+
+int Background::locate_near(const Vec2& y, int hint) const {
+  if (hint < 0 || hint >= num_cells()) return locate_buckets(y);
+  int c = hint;
+  for (int step = 0; step < 12; ++step) {
+    const IntegrationCell& ic = cells_[c];
+    if (in_convex_polygon(ic.v, ic.nv, y, tol_)) return c;
+    // across the edge whose line y is farthest outside of (in distance)
+    int best = -1;
+    double worst = 0;
+    for (int k = 0; k < ic.nv; ++k) {
+      const Vec2 e = ic.v[(k + 1) % ic.nv] - ic.v[k];
+      const double d = cross(e, y - ic.v[k]);
+      if (d < 0 && d * d > worst * e.squaredNorm()) {
+        worst = d * d / e.squaredNorm();
+        best = k;
+      }
+    }
+    if (best < 0 || across_[c][best] < 0) break;
+    c = across_[c][best];
+  }
+  return locate_buckets(y);
+}
+
+int Background::locate_buckets(const Vec2& y) const {
   double fx = (y.x() - lo_.x()) / dx_, fy = (y.y() - lo_.y()) / dy_;
   if (!(fx > -1e-9 * nx_ - 1e-9 && fy > -1e-9 * ny_ - 1e-9 && fx < nx_ * (1 + 1e-9) + 1e-9 &&
         fy < ny_ * (1 + 1e-9) + 1e-9))

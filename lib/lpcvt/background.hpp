@@ -141,6 +141,11 @@ class Background {
   /// Integration cell containing y (boundary included, with a relative tolerance), or -1.
   /// `hint`: a cell to test first (e.g. the previous answer).
   int locate(const Vec2& y, int hint = -1) const;
+  /// The same contract as locate, for a y near `hint` (e.g. the previous answer of a spatially
+  /// ordered sequence): walks from the hint across the cells' shared edges (at most 12 steps,
+  /// towards the edge y is farthest outside of), then searches the buckets. Where y lies on an
+  /// edge shared by two cells (within the tolerance), the cell found may differ from locate's.
+  int locate_near(const Vec2& y, int hint) const;
   /// True when y lies in the closed domain.
   bool inside(const Vec2& y) const { return locate(y) >= 0; }
 
@@ -181,6 +186,9 @@ class Background {
   std::vector<int> bucket_sub_;  ///< per bucket: index into subs_, or -1
   std::vector<Sub> subs_;
   std::vector<int> sub_ptr_, sub_cells_;
+  std::vector<std::array<int, 4>> across_;  ///< per integration cell and edge k (v[k] -> v[k+1]): the
+                                            ///< cell sharing that edge (same end points), or -1
+  int locate_buckets(const Vec2& y) const;
 };
 
 

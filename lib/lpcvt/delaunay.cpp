@@ -148,13 +148,22 @@ void DelaunayGraph::tables() {
     } while (++f != done);
   }
   if (with_triangles_) {
+    // sorted by (smallest vertex, the vertices as CGAL's face holds them): gathered per site, the
+    // faces whose smallest vertex it is, each group sorted (a few faces; no global sort)
     tris_.reserve(dt.number_of_faces());
-    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
-      tris_.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
-    std::sort(tris_.begin(), tris_.end(), [](const auto& a, const auto& b) {
-      auto ka = std::min({a[0], a[1], a[2]}), kb = std::min({b[0], b[1], b[2]});
-      return ka != kb ? ka < kb : a < b;
-    });
+    for (int i = 0; i < n; ++i) {
+      DT::Vertex_handle v = impl_->vh[i];
+      if (v == DT::Vertex_handle()) continue;
+      const size_t first_tri = tris_.size();
+      auto f = dt.incident_faces(v), done = f;
+      if (f == nullptr) continue;
+      do {
+        if (dt.is_infinite(f)) continue;
+        const std::array<int, 3> t = {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
+        if (std::min({t[0], t[1], t[2]}) == i) tris_.push_back(t);
+      } while (++f != done);
+      std::sort(tris_.begin() + first_tri, tris_.end());
+    }
   }
 }
 

@@ -223,7 +223,9 @@ double integrate_piece_closed(const RvdPiece& pc, const Background& bg, const st
     G[m + t] += 0.5 * Et * dJB;
     G[m + t + 1] += 0.5 * Et * dJC;
   }
-  const double omega = gamma != 0 ? std::pow(std::abs(M.determinant()), gamma) : 1.0;  // constant weight
+  // constant weight (pow(x, 1) is x: the default gamma = 1 skips the call)
+  const double adet = std::abs(M.determinant());
+  const double omega = gamma == 0 ? 1.0 : gamma == 1 ? adet : std::pow(adet, gamma);
   if (!out) return omega * E;
   Vec2 sumF = Vec2::Zero();
   for (int k = 0; k < m; ++k) {

@@ -115,36 +115,45 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
     stack.emplace_back(u, 0);
     stack.emplace_back(u, 1);
   }
-  // neighbour lists (CSR, sorted): every edge from both of its triangles, then sorted and unique
+  // neighbour lists (CSR, sorted): every edge once, from the triangle with the smaller index (or
+  // its only one on the hull)
   g.tris.resize(nt);
-  std::vector<int> cnt(n + 1, 0);
+  g.ptr.assign(n + 1, 0);
+  auto owns = [&](int t, int k) {  // edge v[k] -> v[k+1] of t, opposite v[k+2]
+    const int u = T[t].nb[(k + 2) % 3];
+    return u < 0 || t < u;
+  };
   for (int t = 0; t < nt; ++t) {
     g.tris[t] = T[t].v;
-    for (int k = 0; k < 3; ++k) {
-      ++cnt[T[t].v[k] + 1];
-      ++cnt[T[t].v[(k + 1) % 3] + 1];
-    }
-  }
-  for (int i = 0; i < n; ++i) cnt[i + 1] += cnt[i];
-  std::vector<int> all(cnt[n]);
-  {
-    std::vector<int> fill(cnt.begin(), cnt.end() - 1);
-    for (int t = 0; t < nt; ++t)
-      for (int k = 0; k < 3; ++k) {
-        const int a = T[t].v[k], b = T[t].v[(k + 1) % 3];
-        all[fill[a]++] = b;
-        all[fill[b]++] = a;
+    for (int k = 0; k < 3; ++k)
+      if (owns(t, k)) {
+        ++g.ptr[T[t].v[k] + 1];
+        ++g.ptr[T[t].v[(k + 1) % 3] + 1];
       }
   }
-  g.ptr.assign(n + 1, 0);
-  g.adj.clear();
-  g.adj.reserve(cnt[n] / 2 + n);
-  for (int i = 0; i < n; ++i) {
-    std::sort(all.begin() + cnt[i], all.begin() + cnt[i + 1]);
-    const auto e = std::unique(all.begin() + cnt[i], all.begin() + cnt[i + 1]);
-    g.adj.insert(g.adj.end(), all.begin() + cnt[i], e);
-    g.ptr[i + 1] = static_cast<int>(g.adj.size());
+  for (int i = 0; i < n; ++i) g.ptr[i + 1] += g.ptr[i];
+  g.adj.resize(g.ptr[n]);
+  {
+    std::vector<int> fill(g.ptr.begin(), g.ptr.end() - 1);
+    for (int t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k)
+        if (owns(t, k)) {
+          const int a = T[t].v[k], b = T[t].v[(k + 1) % 3];
+          g.adj[fill[a]++] = b;
+          g.adj[fill[b]++] = a;
+        }
   }
+  // sorted; duplicates (only where the input has an edge without a matching twin) removed
+  int w = 0;
+  for (int i = 0; i < n; ++i) {
+    const int b = g.ptr[i], e = g.ptr[i + 1];
+    std::sort(g.adj.begin() + b, g.adj.begin() + e);
+    g.ptr[i] = w;
+    for (int k = b; k < e; ++k)
+      if (k == b || g.adj[k] != g.adj[k - 1]) g.adj[w++] = g.adj[k];
+  }
+  g.ptr[n] = w;
+  g.adj.resize(w);
   return g;
 }
 

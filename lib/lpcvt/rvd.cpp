@@ -77,7 +77,7 @@ MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& si
                                std::vector<std::array<int, 3>> tris) {
   int hint = -1;
   auto metric = [&](const std::array<Vec2, 4>& q) -> Mat2 {
-    int c = bg.locate(0.25 * (q[0] + q[1] + q[2] + q[3]), hint);
+    int c = bg.locate_near(0.25 * (q[0] + q[1] + q[2] + q[3]), hint);
     if (c < 0) return Mat2::Zero();  // a chord outside the domain: never flipped
     hint = c;
     return bg.cell(c).M;

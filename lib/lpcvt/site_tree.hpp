@@ -17,10 +17,9 @@ class SiteTree {
   void query(const Vec2& lo, const Vec2& hi, std::vector<int>& out) const;
 
  private:
-  const std::vector<Vec2>* x_ = nullptr;
   std::vector<int> idx_;  ///< the sites, arranged as an implicit tree over [0, n)
-  void build(int b, int e, int depth);
-  void query(int b, int e, int depth, const Vec2& lo, const Vec2& hi, std::vector<int>& out) const;
+  std::vector<Vec2> p_;   ///< their positions in the same order (contiguous: the queries read only these)
+  void build(const std::vector<Vec2>& x, int b, int e, int depth);
 };
 
 }  // namespace quadapt::lpcvt

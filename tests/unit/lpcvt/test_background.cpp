@@ -171,3 +171,34 @@ TEST_CASE("point location on a strongly graded background: the first containing 
   }
   CHECK(checked == 3000);
 }
+
+TEST_CASE("locate_near: the walk from a hint finds a containing cell, locate's off the edges, nothing outside") {
+  // graded 30 x 30 quads (columns as t^3; cells of very different sizes on the walk) and the
+  // L-shaped domain (the walk meets the re-entrant corner and the boundary)
+  Mesh m = quadapt::make_structured_quads(30, 30);
+  for (Vec2& p : m.nodes) p.x() = std::pow(p.x(), 3);
+  set_frame(m, 1, 1, 0);
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  Mesh l = l_shape();
+  set_frame(l, 1, 1, 0);
+  Background bl = Background::from_frame(l, 1.0, "mem");
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.05, 1.05);
+  for (const Background* b : {&bg, &bl}) {
+    const double s = b == &bl ? 2 : 1;
+    std::uniform_int_distribution<int> cell(0, b->num_cells() - 1);
+    int hint = -1, found = 0;
+    for (int k = 0; k < 4000; ++k) {
+      const Vec2 y(s * u(rng), s * u(rng));
+      const int h = k % 2 ? hint : cell(rng);  // a near hint (the previous answer) or any cell
+      const int c = b->locate_near(y, h), ref = b->locate(y);
+      CHECK((c >= 0) == (ref >= 0));
+      if (c < 0) continue;
+      CHECK(in_convex_polygon(b->cell(c).v, b->cell(c).nv, y, 1e-12 * s));
+      CHECK(c == ref);  // random points lie on no edge: the containing cell is unique
+      hint = c;
+      ++found;
+    }
+    CHECK(found > 2000);
+  }
+}
