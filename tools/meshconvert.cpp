@@ -5,6 +5,7 @@
 #include "io/vtu.hpp"
 #include "gmsh/geometry.hpp"
 #include "mesh/curve_boundary.hpp"
+#include "mesh/curved.hpp"
 #include "mesh/jitter.hpp"
 #include "mesh/validate.hpp"
 
@@ -39,9 +40,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   tool.app().add_option("--geometry", geometry, "Snap the boundary to this geometry (.geo, .brep, .step: named physical curves)")
       ->check(CLI::ExistingFile);
-  tool.app().add_option("--order", order, "Geometric order of the output: 2..4 curve the boundary cells (with --geometry); "
+  tool.app().add_option("--order", order, "Geometric order of the output: 2..6 curve the boundary cells (with --geometry); "
                         "1 keeps straight-sided cells (without --geometry: drops IN's curved geometry)")
-      ->check(CLI::Range(1, 4));
+      ->check(CLI::Range(1, kMaxGeometricOrder));
   tool.app().add_flag("--straight-fallback", fallback, "With --order >= 2: a cell that folds when curved keeps its "
                       "boundary edges straight (end nodes on the curve; reported as straight_edges) instead of the error");
   tool.app().add_option("--jitter", jitter.fraction, "Move every interior node at random by at most this fraction of "

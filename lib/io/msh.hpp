@@ -2,10 +2,10 @@
 // Gmsh MSH files <-> Mesh (docs/design.md §3).
 //
 // Reading: MSH 4.1 (ASCII and binary) and MSH 2.2 (ASCII and binary). 2D meshes of 3-node
-// triangles and 4-node quads, or curved quads of geometric order 2 to 4 (9-, 16-, 25-node
-// quadrangles, MSH types 10, 36, 37, Gmsh's node ordering; one order per mesh): their
+// triangles and 4-node quads, or curved quads of geometric order 2 to 6 (9-, 16-, 25-, 36-,
+// 49-node quadrangles, MSH types 10, 36, 37, 38, 47, Gmsh's node ordering; one order per mesh): their
 // high-order nodes become Mesh::curved control points (mesh/curved.hpp) and Mesh::nodes keeps
-// only the vertices. 2- to 5-node lines become boundary edges of their physical group (by
+// only the vertices. 2- to 7-node lines become boundary edges of their physical group (by
 // name from $PhysicalNames, else "boundary_<tag>"); points and other element types of lower
 // dimension are ignored, 2D elements of other types are an error. Nodes are renumbered 0..n-1,
 // cells in file order. $ElementData views become CellFields, $ElementNodeData views become
@@ -16,7 +16,7 @@
 //
 // Writing: MSH 4.1 ASCII with $PhysicalNames, $Entities (one curve per boundary group, one
 // surface), $Nodes, $Elements (boundary lines, then cells), then one view per field. Curved
-// meshes are written as 9-, 16- or 25-node quads with 3- to 5-node boundary lines; high-order
+// meshes are written as 9- to 49-node quads with 3- to 7-node boundary lines; high-order
 // nodes follow the vertices, shared between cells that hold the same point. Numbers are
 // printed with 17 significant digits so reading back is bit-exact. Gmsh opens the result and
 // shows every field (the DG field through $InterpolationScheme). Written atomically.

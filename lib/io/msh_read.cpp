@@ -32,11 +32,14 @@ int nodes_of_type(long long type) {
     case 10: return 9;   // 9-node quadrangle (order 2)
     case 36: return 16;  // 16-node quadrangle (order 3)
     case 37: return 25;  // 25-node quadrangle (order 4)
+    case 38: return 36;  // 36-node quadrangle (order 5)
+    case 47: return 49;  // 49-node quadrangle (order 6)
     case 15: return 1;   // point
     case 8: return 3;    // 3-node line (boundary edge of a curved mesh)
     case 26: return 4;   // 4-node line
     case 27: return 5;   // 5-node line
-    case 28: return 6;
+    case 28: return 6;   // 6-node line
+    case 62: return 7;   // 7-node line
     default: return -1;
   }
 }
@@ -53,6 +56,8 @@ std::string type_description(long long type) {
     case 21: return "10-node triangle";
     case 36: return "16-node quadrangle";
     case 37: return "25-node quadrangle";
+    case 38: return "36-node quadrangle";
+    case 47: return "49-node quadrangle";
     default: return "type " + std::to_string(type);
   }
 }
@@ -261,13 +266,15 @@ class MshReader {
   }
 
   void add_element(long long type, long long tag, long long phys, long long entity, const long long* nodes) {
-    if (type == 1 || type == 8 || type == 26 || type == 27) {
+    if (type == 1 || type == 8 || type == 26 || type == 27 || type == 28 || type == 62) {
       lines_.push_back({node(nodes[0], tag), node(nodes[1], tag), phys, entity});
-    } else if (type == 2 || type == 3 || type == 10 || type == 36 || type == 37) {
+    } else if (type == 2 || type == 3 || type == 10 || type == 36 || type == 37 || type == 38 || type == 47) {
       Cell c;
       c.nv = type == 2 ? 3 : 4;
       for (int i = 0; i < c.nv; ++i) c.v[i] = node(nodes[i], tag);
-      const int order = type == 2 || type == 3 ? 1 : type == 10 ? 2 : type == 36 ? 3 : 4;
+      int order = 1;
+      while (order < kMaxGeometricOrder && gmsh_quad_type(order) != type) ++order;
+      if (type == 2) order = 1;
       if (quad_order_ == 0) quad_order_ = order;
       if (order != quad_order_ || (type == 2 && quad_order_ > 1))
         c_.fail("element " + std::to_string(tag) + " is a " + type_description(type) + " but earlier cells have geometric order " +
@@ -292,7 +299,7 @@ class MshReader {
 
   void unsupported(long long type) {
     c_.fail("element " + type_description(type) +
-            " is not supported (quadapt reads lines, 3-node triangles and 4-, 9-, 16- and 25-node quadrangles)");
+            " is not supported (quadapt reads lines, 3-node triangles and 4- to 49-node quadrangles of order 1 to 6)");
   }
 
   /// Curved mesh: the control points of every cell from its high-order nodes; then Mesh::nodes
@@ -330,7 +337,7 @@ class MshReader {
     c_.any_size("number of elements");
     c_.any_size("minimum element tag");
     c_.any_size("maximum element tag");
-    long long nodes[25];
+    long long nodes[(kMaxGeometricOrder + 1) * (kMaxGeometricOrder + 1)];
     for (long long b = 0; b < nblocks; ++b) {
       const long long dim = c_.any_int("entity dimension");
       const long long entity = c_.any_int("entity tag");
@@ -353,7 +360,7 @@ class MshReader {
     if (!have_nodes_) c_.fail("missing $Nodes section (it must come before $Elements)");
     have_elements_ = true;
     const long long n = bounded(c_.integer("number of elements"), "number of elements");
-    long long nodes[25];
+    long long nodes[(kMaxGeometricOrder + 1) * (kMaxGeometricOrder + 1)];
     if (!c_.binary) {
       for (long long e = 0; e < n; ++e) {
         const long long tag = c_.integer("element tag");

@@ -127,7 +127,7 @@ void check_writable(const Mesh& m, const std::string& path) {
       throw Error("write_msh: field '" + f.name + "' does not match the cell count");
   if (m.is_curved()) {
     if (gmsh_quad_type(m.geometric_order()) < 0 || !m.all_quads())
-      throw Error("write_msh: curved meshes of order " + std::to_string(m.geometric_order()) + " with triangles or q > 4");
+      throw Error("write_msh: curved meshes of order " + std::to_string(m.geometric_order()) + " with triangles or q > " + std::to_string(kMaxGeometricOrder));
     if (m.curved.points.size() != static_cast<size_t>(m.num_cells()) * m.curved.per_cell())
       throw Error("write_msh: curved control points do not match the cell count");
   }

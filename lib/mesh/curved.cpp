@@ -24,8 +24,14 @@ void equispaced_lagrange(int q, double x, double* l, double* dl) {
   }
 }
 
-int gmsh_quad_type(int q) { return q == 1 ? 3 : q == 2 ? 10 : q == 3 ? 36 : q == 4 ? 37 : -1; }
-int gmsh_line_type(int q) { return q == 1 ? 1 : q == 2 ? 8 : q == 3 ? 26 : q == 4 ? 27 : -1; }
+int gmsh_quad_type(int q) {
+  static const int type[] = {-1, 3, 10, 36, 37, 38, 47};
+  return q >= 1 && q <= kMaxGeometricOrder ? type[q] : -1;
+}
+int gmsh_line_type(int q) {
+  static const int type[] = {-1, 1, 8, 26, 27, 28, 62};
+  return q >= 1 && q <= kMaxGeometricOrder ? type[q] : -1;
+}
 
 std::vector<int> edge_control_points(int q, int e) {
   const int n1 = q + 1;

@@ -1,7 +1,7 @@
 #pragma once
-// Curved (high-order) quads: the Lagrange map of geometric order q (q = 1..4) of a cell, and
-// the correspondence with Gmsh's node ordering (MSH types 3, 10, 36, 37 for quads; 1, 8, 26, 27
-// for lines).
+// Curved (high-order) quads: the Lagrange map of geometric order q (q = 1..6) of a cell, and
+// the correspondence with Gmsh's node ordering (MSH types 3, 10, 36, 37, 38, 47 for quads; 1, 8,
+// 26, 27, 28, 62 for lines).
 //
 // Convention: a curved cell's map is x(xi, eta) = sum_{i,j} X_{i + (q+1) j} l_i(xi) l_j(eta)
 // on the reference square [-1,1]^2, l_i the degree-q Lagrange polynomials through the
@@ -23,8 +23,9 @@
 
 namespace quadapt {
 
-/// Highest geometric order supported (Gmsh's 25-node quadrangle).
-constexpr int kMaxGeometricOrder = 4;
+/// Highest geometric order supported (Gmsh's 49-node quadrangle). Orders 5 and 6 are there for
+/// super-parametric cells: p = 4 needs q = 6 for a wall functional at rate 2p (docs/curved.md).
+constexpr int kMaxGeometricOrder = 6;
 
 /// Values l[0..q] and derivatives dl[0..q] at x of the Lagrange polynomials through the q+1
 /// equispaced points of [-1, 1] (q >= 1).
@@ -32,7 +33,8 @@ void equispaced_lagrange(int q, double x, double* l, double* dl);
 
 /// perm[k] = lexicographic index (i + (q+1) j) of Gmsh's k-th node of a quad of order q.
 std::vector<int> gmsh_quad_node_order(int q);
-/// MSH element type of a quad / line of order q (3, 10, 36, 37 / 1, 8, 26, 27); -1 for other q.
+/// MSH element type of a quad / line of order q (3, 10, 36, 37, 38, 47 / 1, 8, 26, 27, 28, 62);
+/// -1 for other q.
 int gmsh_quad_type(int q);
 int gmsh_line_type(int q);
 

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "core/error.hpp"
+#include "fem/basis.hpp"
 #include "mesh/curved.hpp"
 
 namespace quadapt {
@@ -89,14 +90,15 @@ double cell_area(const Mesh& m, int c) {
   const Cell& cell = m.cells[c];
   if (m.is_curved() && cell.nv == 4) {
     // det J has degree 2q-1 in each variable: q+1 Gauss points are exact.
-    static const double x3[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
-    static const double w3[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
-    static const double x4[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526};
-    static const double w4[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538};
-    const bool four = m.geometric_order() >= 3;
-    const int n = four ? 4 : 3;
-    const double* x = four ? x4 : x3;
-    const double* w = four ? w4 : w3;
+    static const std::vector<Rule1D> rules = [] {
+      std::vector<Rule1D> r(kMaxGeometricOrder + 1);
+      for (int q = 2; q <= kMaxGeometricOrder; ++q) r[q] = gauss_legendre(q + 1);
+      return r;
+    }();
+    const Rule1D& rule = rules.at(m.geometric_order());
+    const int n = static_cast<int>(rule.x.size());
+    const double* x = rule.x.data();
+    const double* w = rule.w.data();
     CellMap G(m, c);
     double a = 0;
     Vec2 t1, t2;

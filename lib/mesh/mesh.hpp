@@ -9,7 +9,7 @@
 //  - Cells are counter-clockwise. A quad's vertices v[0..3] map to the reference square
 //    [-1,1]^2 corners (-1,-1), (1,-1), (1,1), (-1,1) — the same as Gmsh's reference quad.
 //    Local edge e of a cell joins v[e] and v[(e+1) % nv].
-//  - Curved quads (geometric order q = 2..4; mesh/curved.hpp) keep the vertex-only view above
+//  - Curved quads (geometric order q = 2..6; mesh/curved.hpp) keep the vertex-only view above
 //    unchanged — nodes holds only vertices, Cell::v the corners — and add the control points of
 //    each cell's Lagrange map in Mesh::curved. Tools that need only vertices ignore it; tools
 //    that integrate on cells must either use the curved map (mesh/curved.hpp CellMap) or

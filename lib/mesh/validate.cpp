@@ -104,7 +104,7 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
     if (!opt.allow_curved)
       fail("the mesh has curved cells (geometric order " + std::to_string(q) +
            "); this tool supports only straight-sided cells (order 1) so far");
-    if (q > kMaxGeometricOrder || !m.all_quads()) fail("curved cells must be quads of order 2 to 4");
+    if (q > kMaxGeometricOrder || !m.all_quads()) fail("curved cells must be quads of order 2 to " + std::to_string(kMaxGeometricOrder));
     if (m.curved.points.size() != static_cast<size_t>(nc) * m.curved.per_cell())
       fail("curved geometry has " + std::to_string(m.curved.points.size()) + " control points, expected " +
            std::to_string(nc) + " cells x " + std::to_string(m.curved.per_cell()));

@@ -1,6 +1,6 @@
-// Curved quads in MSH files: Gmsh's 9-, 16- and 25-node quadrangles (types 10, 36, 37) and their
-// 3-, 4-, 5-node boundary lines, read with Gmsh's node ordering and written back. Fixtures:
-// tests/golden/io/annulus_q{2,3,4}.msh = gmsh 4.8.4 `gmsh -2 -order q -setnumber N 2
+// Curved quads in MSH files: Gmsh's 9-, 16-, 25-, 36- and 49-node quadrangles (types 10, 36, 37,
+// 38, 47) and their 3- to 7-node boundary lines, read with Gmsh's node ordering and written back.
+// Fixtures: tests/golden/io/annulus_q{2,3,4,5,6}.msh = gmsh 4.8.4 `gmsh -2 -order q -setnumber N 2
 // examples/geometry/annulus.geo` (annulus 1 <= r <= 2, 16 cells, inner/outer circles).
 #include <doctest/doctest.h>
 
@@ -19,8 +19,8 @@ namespace {
 std::string fixture(int q) { return std::string(QUADAPT_SOURCE_DIR) + "/tests/golden/io/annulus_q" + std::to_string(q) + ".msh"; }
 }  // namespace
 
-TEST_CASE("curved MSH: Gmsh's node ordering of quads of order 2, 3, 4 and their boundary lines") {
-  for (int q : {2, 3, 4}) {
+TEST_CASE("curved MSH: Gmsh's node ordering of quads of order 2 to 6 and their boundary lines") {
+  for (int q : {2, 3, 4, 5, 6}) {
     CAPTURE(q);
     const Mesh m = read_msh(fixture(q));
     REQUIRE(m.geometric_order() == q);
@@ -68,13 +68,16 @@ TEST_CASE("curved MSH: Gmsh's node ordering of quads of order 2, 3, 4 and their 
     // The interior control points (q >= 2) make a valid map, and the integral of det J over
     // the cells is the area enclosed by the (polynomial) boundary; the annulus is 3 pi.
     CHECK(min_scaled_jacobian(m).min > 0.5);
-    // Measured |A - 3 pi| on this N = 2 mesh: q = 2: 7.3e-3, q = 3: 1.1e-3, q = 4: 1.1e-5.
-    CHECK(std::abs(total_area(m) - 3 * M_PI) < (q == 2 ? 1e-2 : q == 3 ? 2e-3 : 1e-3));
+    // Measured |A - 3 pi| on this N = 2 mesh: q = 2: 7.3e-3, q = 3: 1.1e-3, q = 4: 1.1e-5,
+    // q = 5: 1.2e-6, q = 6: 1.2e-8.
+    // (A wrong order of the interior nodes of q = 5, 6 would leave an O(h^2) error.)
+    const double tol[] = {0, 0, 1e-2, 2e-3, 2e-5, 2e-6, 2e-8};
+    CHECK(std::abs(total_area(m) - 3 * M_PI) < tol[q]);
   }
 }
 
 TEST_CASE("curved MSH: write then read back is exact, and the text is stable") {
-  for (int q : {2, 3, 4}) {
+  for (int q : {2, 3, 4, 5, 6}) {
     CAPTURE(q);
     const Mesh m = read_msh(fixture(q));
     std::ostringstream os;

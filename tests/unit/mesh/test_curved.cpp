@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "curved_disk.hpp"
 #include "dg/discretization.hpp"
+#include "fem/basis.hpp"
 #include "mesh/curved.hpp"
 #include "mesh/validate.hpp"
 
@@ -20,10 +21,8 @@ using curvedtest::curved_disk;
 
 namespace {
 
-// 5-point Gauss-Legendre on [0, 1] (exact for degree 9 >= 2q - 1 with q <= 4).
-const double gx[5] = {0.04691007703066800, 0.23076534494715845, 0.5, 0.76923465505284155, 0.95308992296933200};
-const double gw[5] = {0.11846344252809454, 0.23931433524968324, 0.28444444444444444, 0.23931433524968324,
-                      0.11846344252809454};
+// 8-point Gauss-Legendre on [-1, 1] (exact for degree 15 >= 2q - 1 with q <= 6).
+const Rule1D gauss8 = gauss_legendre(8);
 
 // Independent 1D Lagrange interpolation through P[0..q] at s_k = k/q: value and derivative.
 void curve(const std::vector<Vec2>& P, double s, Vec2& x, Vec2& dx) {
@@ -59,10 +58,10 @@ double boundary_area(const Mesh& m) {
     for (const BoundaryEdge& be : m.boundary) on = on || (be.v[0] == m.cells[c].v[1] && be.v[1] == m.cells[c].v[2]);
     if (!on) continue;
     const std::vector<Vec2> P = edge1_points(m, c);
-    for (int k = 0; k < 5; ++k) {
+    for (int k = 0; k < 8; ++k) {
       Vec2 x, dx;
-      curve(P, gx[k], x, dx);
-      A += 0.5 * gw[k] * (x.x() * dx.y() - x.y() * dx.x());
+      curve(P, 0.5 * (gauss8.x[k] + 1), x, dx);
+      A += 0.25 * gauss8.w[k] * (x.x() * dx.y() - x.y() * dx.x());
     }
   }
   return A;
@@ -75,8 +74,9 @@ double rate(double e0, double e1) { return std::log2(e0 / e1); }
 TEST_CASE("curved map: disk area at q = 3 equals the polynomial map's own area to 1e-12; converges to pi") {
   // What "area to 1e-12" means: a q = 3 polynomial map does not reproduce a circle, so the
   // reference is the exact area of the polynomial region, computed from its boundary curves.
-  for (int q : {2, 3}) {
+  for (int q : {2, 3, 4, 5, 6}) {
     for (int n : {1, 2}) {
+      CAPTURE(q);
       const Mesh m = curved_disk(n, q);
       const double Ab = boundary_area(m);
       CHECK(std::abs(total_area(m) - Ab) < 1e-12);
@@ -89,10 +89,12 @@ TEST_CASE("curved map: disk area at q = 3 equals the polynomial map's own area t
   }
   // Convergence to the disk: |A_h - pi| = O(h^(q+1)) for odd q, O(h^(q+2)) for even q (the
   // interpolation error's leading term integrates to zero along each edge for even q).
-  // Measured on n = 2, 4, 8: q = 1 rates 1.97, 1.99; q = 2: 3.98, 4.00; q = 3: 3.95, 3.99.
-  for (int q : {1, 2, 3}) {
+  // Measured on n = 2, 4, 8: q = 1 rates 1.97, 1.99; q = 2: 3.98, 4.00; q = 3: 3.95, 3.99;
+  // q = 4: 5.98, 5.99; q = 5: 5.94, 5.99; q = 6: 7.98, 8.23 (3.98e-9, 1.58e-11, 5.2e-14).
+  for (int q : {1, 2, 3, 4, 5, 6}) {
     double prev = 0;
     for (int n : {2, 4, 8}) {
+      CAPTURE(q);
       const double err = std::abs(total_area(curved_disk(n, q)) - M_PI);
       if (n > 2) CHECK(rate(prev, err) > (q % 2 ? q + 1 : q + 2) - 0.1);
       prev = err;
@@ -115,12 +117,12 @@ TEST_CASE("curved map: edge normals — closed-curve identities to rounding, rad
           bool on = false;
           for (const BoundaryEdge& be : m.boundary) on = on || (be.v[0] == a && be.v[1] == b);
           if (!on) continue;
-          for (int k = 0; k < 5; ++k) {
+          for (int k = 0; k < 8; ++k) {
             Vec2 x, nrm;
-            const double ds = edge_geometry(G, e, gx[k], x, nrm);
+            const double ds = edge_geometry(G, e, 0.5 * (gauss8.x[k] + 1), x, nrm);
             CHECK(std::abs(nrm.norm() - 1) < 1e-14);
-            sum_n += gw[k] * ds * nrm;
-            flux += gw[k] * ds * x.dot(nrm);
+            sum_n += 0.5 * gauss8.w[k] * ds * nrm;
+            flux += 0.5 * gauss8.w[k] * ds * x.dot(nrm);
             worst = std::max(worst, std::acos(std::min(1.0, nrm.dot(x.normalized()))));
           }
         }
