@@ -100,7 +100,7 @@ if [ -n "$GEOMETRY" ]; then  # the true geometry (docs/curved.md): meshes snappe
   [ -f "$GEOMETRY" ] || die "GEOMETRY '$GEOMETRY': no such file"
   [ "$METHOD" != fixed-fraction ] || die "GEOMETRY with METHOD=fixed-fraction: not yet (use uniform, lpcvt or bamg)"
   GEOMETRY="$(cd "$(dirname "$GEOMETRY")" && pwd)/$(basename "$GEOMETRY")"
-  if [ -z "$ORDER" ]; then ORDER=$(( P < 1 ? 1 : (P > 4 ? 4 : P) )); fi
+  if [ -z "$ORDER" ]; then ORDER=$(( P < 1 ? 1 : (P > 6 ? 6 : P) )); fi
   [[ "$ORDER" =~ ^[1-6]$ ]] || die "ORDER='$ORDER': the geometric order must be 1..6"
 fi
 if [ -z "$FF_BY" ]; then
