@@ -24,7 +24,9 @@ int main(int argc, char** argv) {
             "THIN along the largest derivative, and the error constant B of the L_q model e = B "
             "d^(-q(p+1)/2) (eqs. 5.15-5.16). A2 = 0 is floored at A1 rho_max^-(p+1) (rho <= "
             "--max-anisotropy); cells whose (p+1)-th term is rounding noise get A1 = A2 = B = 0, "
-            "theta = 0, rho = 1. Output: SOL's geometry and boundary groups with cell fields theta, "
+            "theta = 0, rho = 1. SOL may have curved cells (geometric order 2..6): the field lives and is "
+            "reconstructed on their curved map. Output: SOL's geometry (the vertex view of curved cells) "
+            "and boundary groups with cell fields theta, "
             "rho, B, A1, A2, phi and p (the DG degree); the solution itself is not copied. Input "
             "for size-solve. With --exact EXPR -p P the field is instead the degree-P GLL "
             "interpolant of the expression EXPR(x, y) on the quad mesh SOL (adaptation to a known "
@@ -61,7 +63,9 @@ int main(int argc, char** argv) {
     Mesh sol;
     {
       auto ph = tool.phase("read");
-      sol = read_valid_msh(in, ValidateOptions::cells(CellKind::Quads));
+      ValidateOptions vo = ValidateOptions::cells(CellKind::Quads);
+      vo.allow_curved = true;  // reconstructed on the curved map (docs/curved.md)
+      sol = read_valid_msh(in, vo);
       if (!exact.empty()) {
         if (p_exact < 1) throw InputError("", "-p must be >= 1");
         Expr e = parse_expression(exact);
@@ -80,6 +84,7 @@ int main(int argc, char** argv) {
     const int nc = sol.num_cells();
     const int n = r.p + 1;
     rep["cells"] = nc;
+    rep["geometric_order"] = sol.geometric_order();
     rep["p"] = r.p;
     rep["dofs"] = static_cast<long long>(nc) * n * n;
     double a1max = 0, bsum = 0;

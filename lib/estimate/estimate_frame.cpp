@@ -110,6 +110,7 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
 Mesh make_shape_mesh(const Mesh& sol, const EstimateResult& r) {
   Mesh m = sol;
   m.clear_fields();
+  m.curved = CurvedGeometry{};  // the vertex view: per-cell constants on a background mesh
   auto scalar = [&](const std::string& name, const std::vector<double>& v) {
     CellField f;
     f.name = name;

@@ -42,13 +42,18 @@ struct EstimateResult {
 /// The patch cells of every cell (cell k first, then the others in increasing index).
 std::vector<std::vector<int>> reconstruction_patches(const Mesh& m, PatchKind kind);
 
-/// Runs the estimate on `sol`. `source` names the file in error messages. Throws InputError
+/// Runs the estimate on `sol`, straight or curved (mesh/curved.hpp): the DG field's values sit
+/// at the GLL points of each cell's map, and the reconstruction integrates on that map
+/// (map_to_physical, map_jacobian), so curved cells give the derivatives of the field on the
+/// true cells. `source` names the file in error messages. Throws InputError
 /// when the field is missing or is not a degree-p DG field on an all-quad mesh.
 EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt = {},
                               const std::string& source = "");
 
 /// The SHAPE mesh: sol's geometry and boundary groups, no input fields, plus CellFields
-/// theta, rho, B, A1, A2, phi and p (the DG degree, constant per cell).
+/// theta, rho, B, A1, A2, phi and p (the DG degree, constant per cell). Curved cells become
+/// their vertex view (straight-sided, same vertices and cells): the shape is a per-cell
+/// constant, and size-solve's background mesh is straight.
 Mesh make_shape_mesh(const Mesh& sol, const EstimateResult& r);
 
 }  // namespace quadapt

@@ -80,6 +80,10 @@ CellMap::CellMap(const Mesh& m, int c) : q_(m.geometric_order()), X_(nullptr) {
   }
 }
 
+CellMap::CellMap(int q, const Vec2* X) : q_(q), X_(X) {
+  if (q < 2 || q > kMaxGeometricOrder) throw Error("CellMap: order " + std::to_string(q) + " needs q in 2.." + std::to_string(kMaxGeometricOrder));
+}
+
 Vec2 CellMap::map(double xi, double eta) const {
   if (q_ == 1) {
     const double n0 = 0.25 * (1 - xi) * (1 - eta), n1 = 0.25 * (1 + xi) * (1 - eta);

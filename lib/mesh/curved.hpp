@@ -47,6 +47,9 @@ std::vector<int> edge_control_points(int q, int e);
 class CellMap {
  public:
   CellMap(const Mesh& m, int c);
+  /// The map of order q >= 2 through the (q+1)^2 control points X (lexicographic; the caller
+  /// keeps them alive), e.g. a cell's points mapped into a frame's metric space.
+  CellMap(int q, const Vec2* X);
   int order() const { return q_; }
   Vec2 map(double xi, double eta) const;
   /// Columns of the Jacobian: t1 = dx/dxi, t2 = dx/deta; returns det J.

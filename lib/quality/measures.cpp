@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fem/basis.hpp"
+#include "mesh/curved.hpp"
+
 namespace quadapt {
 
 namespace {
@@ -35,6 +38,69 @@ CellShape cell_shape(const Vec2* p, int nv) {
       s.orientation_deg = wrap180(std::atan2(en.y(), en.x()) * 180.0 / M_PI);
     }
   }
+  return s;
+}
+
+namespace {
+// The control points of curved cell c, mapped by M when given.
+std::vector<Vec2> control_points(const Mesh& m, int c, const Eigen::Matrix2d* M) {
+  const Vec2* X = m.cell_points(c);
+  std::vector<Vec2> P(X, X + m.curved.per_cell());
+  if (M)
+    for (Vec2& x : P) x = *M * x;
+  return P;
+}
+
+double edge_length(const CellMap& G, int e) {
+  static const Rule1D g = gauss_legendre(8);
+  double len = 0;
+  Vec2 x, n;
+  for (size_t k = 0; k < g.x.size(); ++k) len += 0.5 * g.w[k] * edge_geometry(G, e, 0.5 * (g.x[k] + 1), x, n);
+  return len;
+}
+}  // namespace
+
+double curved_edge_length(const Mesh& m, int c, int e, const Eigen::Matrix2d* M) {
+  const std::vector<Vec2> P = control_points(m, c, M);
+  return edge_length(CellMap(m.geometric_order(), P.data()), e);
+}
+
+CellShape curved_cell_shape(const Mesh& m, int c, const Eigen::Matrix2d* M) {
+  const int q = m.geometric_order();
+  const std::vector<Vec2> P = control_points(m, c, M);
+  const CellMap G(q, P.data());
+  CellShape s;
+  s.nv = 4;
+  s.scaled_jacobian = INFINITY;
+  s.edge_min = INFINITY;
+  s.edge_max = 0;
+  // corners (xi, eta) of v[0..3]; the tangent along the next edge and back along the previous
+  // one are +-dx/dxi, +-dx/deta
+  static const double cx[4] = {-1, 1, 1, -1}, cy[4] = {-1, -1, 1, 1};
+  Vec2 t1, t2;
+  for (int i = 0; i < 4; ++i) {
+    G.jacobian(cx[i], cy[i], t1, t2);
+    const Vec2 T[4] = {t1, t2, Vec2(-t1), Vec2(-t2)};  // edge i's direction from v[i] is T[i]
+    const Vec2 en = T[i], ep = -T[(i + 3) % 4];
+    double a = std::atan2(cross(en, ep), en.dot(ep)) * 180.0 / M_PI;
+    if (a < 0) a += 360.0;
+    s.angle_deg[i] = a;
+    const double ln = edge_length(G, i);
+    if (ln < s.edge_min) s.edge_min = ln;
+    if (ln > s.edge_max) {
+      s.edge_max = ln;
+      const std::vector<int> idx = edge_control_points(q, i);
+      const Vec2 chord = P[idx.back()] - P[idx.front()];
+      s.orientation_deg = wrap180(std::atan2(chord.y(), chord.x()) * 180.0 / M_PI);
+    }
+  }
+  const int n = 2 * q + 2;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double det = G.jacobian(-1 + 2.0 * i / (n - 1), -1 + 2.0 * j / (n - 1), t1, t2);
+      const double l1 = t1.norm(), l2 = t2.norm();
+      s.scaled_jacobian = std::min(s.scaled_jacobian, l1 > 0 && l2 > 0 ? det / (l1 * l2) : 0.0);
+    }
   return s;
 }
 

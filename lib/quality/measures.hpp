@@ -28,6 +28,22 @@ struct CellShape {
 /// Measures of the polygon p[0..nv-1] (nv = 3 or 4).
 CellShape cell_shape(const Vec2* p, int nv);
 
+/// Measures of curved quad c of m (geometric order q >= 2, mesh/curved.hpp), its control points
+/// optionally mapped by M (y = M x; the map of the mapped points is M times the cell's map):
+///  - angle at a corner: between the two curved edges' tangents there (the map's Jacobian
+///    columns), as for a straight cell;
+///  - scaled Jacobian: the minimum of det J / (|dx/dxi| |dx/deta|) over the (2q+2)^2
+///    equispaced points of the reference square, corners included (at a corner this is the
+///    straight definition's sin(angle); inside it sees a curved edge that bends the cell);
+///  - edge lengths: arc lengths of the curved edges (8-point Gauss); orientation: the direction
+///    of the longest edge's chord.
+CellShape curved_cell_shape(const Mesh& m, int c, const Eigen::Matrix2d* M = nullptr);
+
+/// Arc length of local edge e of cell c of a curved mesh, its points mapped by M (y = M x)
+/// when M is not null; 8-point Gauss quadrature of |dx/ds| (exact to ~1e-12 for q <= 6 at the
+/// cell sizes of adaptation).
+double curved_edge_length(const Mesh& m, int c, int e, const Eigen::Matrix2d* M = nullptr);
+
 /// Vertex positions of cell c, optionally mapped by the 2x2 matrix M (y = M x).
 void cell_points(const Mesh& m, int c, Vec2 out[4]);
 void cell_points(const Mesh& m, int c, const Eigen::Matrix2d& M, Vec2 out[4]);

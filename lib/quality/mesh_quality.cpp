@@ -19,9 +19,14 @@ ShapeStats shape_stats(const Mesh& m, const std::vector<Eigen::Matrix2d>& M) {
   s.scaled_jacobian_min = INFINITY;
   Vec2 p[4];
   for (int c = 0; c < m.num_cells(); ++c) {
-    if (M.empty()) cell_points(m, c, p);
-    else cell_points(m, c, M[c], p);
-    const CellShape cs = cell_shape(p, m.cells[c].nv);
+    CellShape cs;
+    if (m.is_curved()) {
+      cs = curved_cell_shape(m, c, M.empty() ? nullptr : &M[c]);
+    } else {
+      if (M.empty()) cell_points(m, c, p);
+      else cell_points(m, c, M[c], p);
+      cs = cell_shape(p, m.cells[c].nv);
+    }
     for (int i = 0; i < cs.nv; ++i) {
       const double a = cs.angle_deg[i];
       s.angle_min_deg = std::min(s.angle_min_deg, a);
@@ -83,6 +88,7 @@ QualityReport measure_quality(const Mesh& m, const Frame* fr, const std::string&
   QualityReport r;
   vertex_regularity(m, r.interior_vertices, r.irregular_interior);
   r.nodes = m.num_nodes();
+  r.geometric_order = m.geometric_order();
   r.cells = m.num_cells();
   r.quads = m.num_quads();
   r.triangles = m.num_triangles();
@@ -123,7 +129,8 @@ QualityReport measure_quality(const Mesh& m, const Frame* fr, const std::string&
     const Cell& cell = m.cells[c];
     for (int i = 0; i < cell.nv; ++i) {
       const Vec2 e = m.nodes[cell.v[(i + 1) % cell.nv]] - m.nodes[cell.v[i]];
-      const double l = (Frame::cell_metric_factor() * M[c] * e).norm();
+      const double l = m.is_curved() ? Frame::cell_metric_factor() * curved_edge_length(m, c, i, &M[c])
+                                     : (Frame::cell_metric_factor() * M[c] * e).norm();
       lengths.push_back(l);
       sum += l;
       if (l >= lo && l <= hi) ++in_range;
@@ -158,6 +165,7 @@ nlohmann::json shape_json(const ShapeStats& s) {
 nlohmann::json to_json(const QualityReport& r) {
   nlohmann::json j;
   j["nodes"] = r.nodes;
+  j["geometric_order"] = r.geometric_order;
   j["cells"] = r.cells;
   j["quads"] = r.quads;
   j["triangles"] = r.triangles;

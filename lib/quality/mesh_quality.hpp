@@ -9,6 +9,10 @@
 // target cell's edge has length exactly 1; edges count per cell (an edge shared by two cells is
 // measured twice, once with each cell's M).
 // Continuous element count of the frame: Frame::target_cells() (thesis eq. 5.1).
+// Curved cells (geometric order q >= 2) are measured on their map (quality/measures.hpp,
+// curved_cell_shape): angles between the curved edges' tangents, the scaled Jacobian sampled on
+// the map, arc lengths; in metric space the control points are mapped by M (the metric-space
+// cell of a linear M is the mapped map). The area is the integral of det J (mesh.hpp).
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -45,6 +49,7 @@ struct FrameStats {
 
 struct QualityReport {
   int nodes = 0, cells = 0, quads = 0, triangles = 0;
+  int geometric_order = 1;            ///< of the cells (mesh/curved.hpp); > 1: measured on the curved map
   double area = 0;
   std::vector<BoundaryGroup> groups;
   std::vector<int> group_edges;
