@@ -181,9 +181,6 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
   I.fw.resize(I.fx.size());
   for (size_t fi = 0; fi < topo_.faces.size(); ++fi) {
     const Face& f = topo_.faces[fi];
-    if (mesh.is_curved() && !f.is_conforming())
-      throw InputError("mesh: curved cells with hanging nodes are not supported (non-conforming face near (" +
-                       std::to_string(0.5 * (f.a + f.b).x()) + ", " + std::to_string(0.5 * (f.a + f.b).y()) + "))");
     for (size_t q = 0; q < nfq; ++q) {
       const size_t k = fi * nfq + q;
       double dsdt;
@@ -191,8 +188,8 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
       face_geometry(I.geo[f.cell[0]], f, t, I.fx[k], I.fn[k], dsdt);
       I.fw[k] = 0.5 * I.gv.w[q] * dsdt;
       if (mesh.is_curved() && !f.is_boundary()) {
-        // Both sides must trace the same curve (shared edge nodes): the traces are matched by
-        // the edge parameter.
+        // Both sides must trace the same curve (shared edge nodes; at a hanging node the coarse
+        // edge's part [s_a, s_b] and the fine edge): the traces are matched by the edge parameter.
         double xi, eta;
         edge_reference_point(f.local_edge[1], f.s_a[1] + t * (f.s_b[1] - f.s_a[1]), xi, eta);
         const Vec2 x1 = I.geo[f.cell[1]].map(xi, eta);

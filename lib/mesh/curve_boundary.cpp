@@ -8,6 +8,7 @@
 #include "core/format.hpp"
 #include "mesh/boundary.hpp"
 #include "mesh/curved.hpp"
+#include "mesh/topology.hpp"
 
 namespace quadapt {
 
@@ -30,7 +31,13 @@ CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const
     throw InputError(path, "the mesh is curved already (geometric order " + std::to_string(m.geometric_order()) + ")");
   if (!m.all_quads()) throw InputError(path, "curved cells must be quads (the mesh has triangles)");
   CurveStats st;
-  st.snap = snap_to_geometry(m, g, path);
+  // 2:1 hanging nodes: they must stay on their coarse edges, so nothing interior moves (the
+  // snap moves only boundary nodes, the curving only the boundary cells' own control points; the
+  // interior edges stay straight with equispaced control points, which the coarse and the fine
+  // side parametrise alike)
+  const Topology topo = build_topology(m);
+  st.hanging = std::any_of(topo.faces.begin(), topo.faces.end(), [](const Face& f) { return !f.is_conforming(); });
+  st.snap = snap_to_geometry(m, g, path, !st.hanging);
   st.order = q;
   if (q == 1) return st;
   const auto curves = group_curves(m, g, path);
@@ -189,6 +196,7 @@ CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const
   for (int attempt = 0;; ++attempt) {
     sj = ScaledJacobian{};
     for (bool global : {false, true}) {
+      if (global && st.hanging) break;  // the smooth blend would bend the coarse edges of hanging nodes
       Mesh r = build(global);
       const ScaledJacobian s2 = min_scaled_jacobian(r);
       if (global && s2.min <= sj.min) continue;

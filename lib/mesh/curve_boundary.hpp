@@ -36,10 +36,15 @@ struct CurveStats {
   int worst_cell = -1;
   int straight_edges = 0;         ///< boundary edges left straight (fallback)
   std::string blend;              ///< "transfinite" (cells' own) or "smooth" (across cells)
+  bool hanging = false;           ///< the mesh has 2:1 hanging nodes (transfinite blend only)
 };
 
 /// Snaps m's boundary nodes to g (snap_to_geometry) and, for q >= 2, gives m geometric order q as
-/// above. m: straight-sided, all quads, conforming. q in 1..kMaxGeometricOrder. With `fallback`,
+/// above. m: straight-sided, all quads, conforming or 2:1 non-conforming (refine's output). With
+/// hanging nodes only the boundary nodes and the boundary cells' own control points move (snap
+/// without interior moves, the transfinite blend only): every interior edge stays straight with
+/// equispaced control points, so a coarse edge and its two halves trace the same segment with
+/// the same parametrisation (dgsolve checks the traces at every face quadrature point). q in 1..kMaxGeometricOrder. With `fallback`,
 /// a cell that folds either way gets its boundary edges straight (their end nodes stay on the
 /// curve; counted in straight_edges) instead of the error — a sliver cell whose angle at a
 /// boundary node is smaller than the arc's turn cannot take a curved edge.

@@ -98,7 +98,6 @@ case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
 if [ -n "$GEOMETRY" ]; then  # the true geometry (docs/curved.md): meshes snapped to it, cells of order ORDER
   [ -f "$GEOMETRY" ] || die "GEOMETRY '$GEOMETRY': no such file"
-  [ "$METHOD" != fixed-fraction ] || die "GEOMETRY with METHOD=fixed-fraction: not yet (use uniform, lpcvt or bamg)"
   GEOMETRY="$(cd "$(dirname "$GEOMETRY")" && pwd)/$(basename "$GEOMETRY")"
   if [ -z "$ORDER" ]; then ORDER=$(( P < 1 ? 1 : (P > 6 ? 6 : P) )); fi
   [[ "$ORDER" =~ ^[1-6]$ ]] || die "ORDER='$ORDER': the geometric order must be 1..6"
@@ -307,10 +306,19 @@ while :; do
         run_tool "$d" refine "$d/adapted.msh" "$d/mesh.msh" -- refine "$d/mesh.msh" --uniform -o "$d/adapted.msh"
       fi ;;
     fixed-fraction)
+      # with GEOMETRY: refine splits the vertex view (hanging nodes kept, interior edges straight)
+      # and snaps the new boundary nodes; the next step curves its boundary cells
+      geo=()
+      [ -n "$GEOMETRY" ] && geo=(--geometry "$GEOMETRY")
       if [ "$MODE" = goal ]; then
         run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" "$CASE" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
-        run_tool "$d" refine "$d/adapted.msh" "$d/dwr.msh" -- \
-          refine "$d/dwr.msh" --fraction "$FRACTION" --by "$FF_BY" -o "$d/adapted.msh"
+        ind="$d/dwr.msh"
+        if [ -n "$GEOMETRY" ]; then
+          ind="$d/dwr-straight.msh"
+          run_tool "$d" straight "$ind" "$d/dwr.msh" -- meshconvert "$d/dwr.msh" --order 1 -o "$ind"
+        fi
+        run_tool "$d" refine "$d/adapted.msh" "$ind" -- \
+          refine "$ind" --fraction "$FRACTION" --by "$FF_BY" ${geo[@]+"${geo[@]}"} -o "$d/adapted.msh"
       else
         run_tool "$d" estimate-frame "$d/shape.msh" "$d/sol.msh" -- estimate-frame "$d/sol.msh" -o "$d/shape.msh"
         ind="$d/shape.msh"
@@ -319,7 +327,7 @@ while :; do
           run_tool "$d" ff-indicator "$ind" "$d/shape.msh" -- "$PY" "$here/ff-indicator.py" "$d/shape.msh" "$P" -o "$ind"
         fi
         run_tool "$d" refine "$d/adapted.msh" "$ind" -- \
-          refine "$ind" --fraction "$FRACTION" --by "$FF_BY" -o "$d/adapted.msh"
+          refine "$ind" --fraction "$FRACTION" --by "$FF_BY" ${geo[@]+"${geo[@]}"} -o "$d/adapted.msh"
       fi ;;
     lpcvt|bamg)
       sol="$d/sol.msh" geo=()
