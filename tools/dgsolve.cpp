@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   using namespace quadapt;
   Tool tool("dgsolve", "High-order DG solution of steady advection-diffusion on an all-quad mesh",
             "Solves div(D grad u) - c . grad u = S (thesis eq. 6.2) on MESH (straight-sided quads, conforming "
-            "or with 2:1 hanging nodes, or conforming curved quads of geometric order 2..6: Gmsh's 9- to "
+            "or with 2:1 hanging nodes, or curved quads of geometric order 2..6 (2:1 only where the coarse edge and its halves trace the same curve): Gmsh's 9- to "
             "49-node quadrangles, integrated on their curved map) with the discontinuous Galerkin method of thesis eq. 2.9: tensor "
             "Lagrange basis of degree P on Gauss-Lobatto points, upwind advective flux, symmetric interior "
             "penalty (factor 20 p(p+1)/h, n^T D n) for the full diffusion tensor, weak Dirichlet data (CASE's "
