@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   bool fallback = false;
   JitterOptions jitter;
   jitter.fraction = 0;
+  std::string nodes = "equal";
   tool.app().add_option("IN", in, "Input mesh (.msh)")->required()->check(CLI::ExistingFile);
   tool.app().add_option("-o,--output", out, "Output mesh: .msh (MSH 4.1 ASCII) or .vtu (VTK XML, ParaView)")->required();
   tool.app()
@@ -43,6 +44,13 @@ int main(int argc, char** argv) {
   tool.app().add_option("--order", order, "Geometric order of the output: 2..6 curve the boundary cells (with --geometry); "
                         "1 keeps straight-sided cells (without --geometry: drops IN's curved geometry)")
       ->check(CLI::Range(1, kMaxGeometricOrder));
+  tool.app()
+      .add_option("--boundary-nodes", nodes, "With --order q >= 2: the boundary edges' q-1 interior nodes at equal "
+                  "parameter steps ('equal', Gmsh's choice), or ('area', odd q) stretched so that each polynomial edge "
+                  "encloses the curve's area with its chord: boundary integrals converge at >= 2q instead of q+1 "
+                  "(docs/curved.md)")
+      ->check(CLI::IsMember({"equal", "area"}))
+      ->capture_default_str();
   tool.app().add_flag("--straight-fallback", fallback, "With --order >= 2: a cell that folds when curved keeps its "
                       "boundary edges straight (end nodes on the curve; reported as straight_edges) instead of the error");
   tool.app().add_option("--jitter", jitter.fraction, "Move every interior node at random by at most this fraction of "
@@ -81,8 +89,10 @@ int main(int argc, char** argv) {
     if (g) {
       auto ph = tool.phase("curve");
       if (m.is_curved()) throw InputError(in, "the mesh is curved already; --geometry curves straight-sided meshes");
-      const CurveStats st = curve_boundary_cells(m, *g, std::max(order, 1), in, fallback);
+      const CurveStats st = curve_boundary_cells(m, *g, std::max(order, 1), in, fallback,
+                                                 nodes == "area" ? BoundaryNodes::Area : BoundaryNodes::Equal);
       tool.option("geometry", geometry);
+      tool.option("boundary_nodes", nodes);
       tool.report()["snap"] = {{"boundary_nodes", st.snap.boundary_nodes}, {"moved", st.snap.moved},
                                {"max_move", st.snap.max_move}, {"max_distance", st.snap.max_distance},
                                {"max_interior_move", st.snap.max_interior_move}};
@@ -90,7 +100,8 @@ int main(int argc, char** argv) {
                                   {"max_sagitta", st.max_sagitta}, {"max_blend", st.max_blend},
                                   {"max_distance", st.max_distance},
                                   {"min_scaled_jacobian", st.min_scaled_jacobian}, {"blend", st.blend},
-                                  {"straight_edges", st.straight_edges}};
+                                  {"straight_edges", st.straight_edges}, {"hanging_nodes", st.hanging},
+                                  {"max_stretch", st.max_stretch}};
       validate_mesh(m, in, opt);
       tool.log("boundary on " + geometry + ": " + std::to_string(st.snap.moved) + " of " +
                std::to_string(st.snap.boundary_nodes) + " boundary nodes moved (at most " + std::to_string(st.snap.max_move) +

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "fem/basis.hpp"
 #include "mesh/boundary.hpp"
 #include "mesh/curved.hpp"
 #include "mesh/topology.hpp"
@@ -23,7 +24,92 @@ struct CurvedEdge {
 
 }  // namespace
 
-CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const std::string& path, bool fallback) {
+namespace {
+
+// Integral over the degree-q Lagrange curve through pts (equispaced reference parameters, the
+// interior ones at curve parameters t[1..q-1] of curve k, t[0] = ta, t[q] = tb) of its signed
+// normal distance to the curve, d = (x - c(t*)) . n(t*) with t* the local closest parameter
+// (Newton from the parameter interpolated at the same reference point): int d ds. Only points
+// and directions of the curve enter (c' and c'' steer Newton; the CAD kernel's parametrisation
+// speed need not be accurate).
+double normal_distance_integral(const BoundaryGeometry& g, int k, const std::vector<double>& t,
+                                const std::vector<Vec2>& pts, const Rule1D& rule) {
+  const int q = static_cast<int>(pts.size()) - 1;
+  double l[kMaxGeometricOrder + 1], dl[kMaxGeometricOrder + 1];
+  double s = 0;
+  for (size_t j = 0; j < rule.x.size(); ++j) {
+    equispaced_lagrange(q, rule.x[j], l, dl);
+    Vec2 x(0, 0), dx(0, 0);
+    double tt = 0;
+    for (int i = 0; i <= q; ++i) {
+      x += l[i] * pts[i];
+      dx += dl[i] * pts[i];
+      tt += l[i] * t[i];
+    }
+    Vec2 c = g.point(k, tt), d1 = g.derivative(k, tt);
+    for (int it = 0; it < 8; ++it) {
+      const Vec2 d2 = g.second_derivative(k, tt);
+      const double f = (c - x).dot(d1), df = d1.squaredNorm() + (c - x).dot(d2);
+      if (!(df > 0)) break;
+      const double step = f / df;
+      tt -= step;
+      c = g.point(k, tt);
+      d1 = g.derivative(k, tt);
+      if (std::abs(step) * d1.norm() < 1e-15 * (pts[q] - pts[0]).norm()) break;
+    }
+    const Vec2 n = Vec2(d1.y(), -d1.x()).normalized();
+    s += rule.w[j] * (x - c).dot(n) * dx.norm();
+  }
+  return s;
+}
+
+// Interior parameters of a boundary edge (BoundaryNodes in curve_boundary.hpp): equal steps, or
+// for odd q >= 3 with `area` the symmetric stretch whose polynomial edge has the curve's area.
+std::vector<double> edge_parameters(const BoundaryGeometry& g, int k, double ta, double tb, int q, bool area,
+                                    double& alpha) {
+  auto params = [&](double a) {
+    std::vector<double> t(q - 1);
+    for (int i = 1; i < q; ++i) {
+      const double s = static_cast<double>(i) / q;
+      t[i - 1] = ta + (tb - ta) * (s + a * (s - 0.5) * s * (1 - s));
+    }
+    return t;
+  };
+  alpha = 0;
+  if (!area || q % 2 == 0) return params(0);
+  static const Rule1D rule = gauss_legendre(16);
+  const Vec2 a = g.point(k, ta), b = g.point(k, tb);
+  auto residual = [&](double al) {
+    std::vector<double> t = params(al);
+    const std::vector<Vec2> mid = g.points(k, t);
+    std::vector<Vec2> pts{a};
+    pts.insert(pts.end(), mid.begin(), mid.end());
+    pts.push_back(b);
+    t.insert(t.begin(), ta);
+    t.push_back(tb);
+    return normal_distance_integral(g, k, t, pts, rule);
+  };
+  // the residual is nearly linear in alpha (alpha ~ (kappa h)^2): a few secant steps
+  const double tol = 1e-16 * (b - a).squaredNorm();
+  double a0 = 0, r0 = residual(0), a1 = 0.01, r1 = residual(a1);
+  for (int it = 0; it < 30 && std::abs(r1) > tol && r1 != r0; ++it) {
+    const double a2 = a1 - r1 * (a1 - a0) / (r1 - r0);
+    a0 = a1;
+    r0 = r1;
+    a1 = a2;
+    r1 = residual(a1);
+  }
+  // a stretch that reorders the nodes (|alpha| >= 2 folds s -> s + alpha g(s)) means the edge is far
+  // too coarse for its curve: keep equal steps there
+  if (!std::isfinite(a1) || std::abs(a1) > 0.5 || std::abs(r1) > std::abs(residual(0))) return params(0);
+  alpha = a1;
+  return params(a1);
+}
+
+}  // namespace
+
+CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const std::string& path, bool fallback,
+                                BoundaryNodes nodes) {
   if (q < 1 || q > kMaxGeometricOrder)
     throw InputError(
         "", "geometric order " + std::to_string(q) + " not supported (1.." + std::to_string(kMaxGeometricOrder) + ")");
@@ -66,8 +152,9 @@ CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const
       if (tb == cv.t0 || tb == cv.t1)
         tb = (g.point(k, cv.t0) - b).norm() < (g.point(k, cv.t1) - b).norm() ? cv.t0 : cv.t1;
     }
-    std::vector<double> t(q - 1);
-    for (int i = 1; i < q; ++i) t[i - 1] = ta + (tb - ta) * i / q;
+    double alpha = 0;
+    const std::vector<double> t = edge_parameters(g, k, ta, tb, q, nodes == BoundaryNodes::Area, alpha);
+    st.max_stretch = std::max(st.max_stretch, std::abs(alpha));
     const std::vector<Vec2> mid = g.points(k, t);
     std::vector<Vec2> pts{a};
     pts.insert(pts.end(), mid.begin(), mid.end());

@@ -15,6 +15,16 @@
 //    position only, so neighbours keep sharing their edges; |grad D| ~ sagitta / rho ~ h / (8 R)
 //    (R the curve's radius of curvature) keeps thin boundary-layer cells unfolded: a cell of
 //    height H next to a chord whose sagitta exceeds H is carried along instead of crushed.
+// Edge nodes (BoundaryNodes): Equal puts the q-1 interior nodes at equal parameter steps (equal
+// angles on a circle, as Gmsh does); the boundary integrals of the polynomial edges are then off
+// by O(h^(q+1)) for odd q and O(h^(q+2)) for even q (docs/curved.md). Area (odd q >= 3): the
+// interior parameters s_i = i/q are stretched symmetrically, s_i + alpha (s_i - 1/2) s_i (1 - s_i),
+// with alpha (a secant solve) such that the signed area between the polynomial edge and its chord
+// equals that between the curve and the chord, (1/2) int (x - a) x dx' along each. To first order
+// any move of the edge nodes along the curve changes the edge's normal distance d by a multiple
+// of the node polynomial omega (equispaced nodes) — one direction — and for odd q int omega != 0,
+// so this kills the leading term of int d ds; what remains is O(h^(q+3)) summed over a curve
+// (measured on a circle: O(h^10) at q = 3). For even q int omega = 0: Area = Equal.
 // The result's minimum scaled Jacobian (mesh/curved.hpp) is reported; a cell whose sampled
 // Jacobian is not positive is refused (NumericalError naming it): refine near that curve.
 #include <string>
@@ -24,6 +34,8 @@
 #include "mesh/snap.hpp"
 
 namespace quadapt {
+
+enum class BoundaryNodes { Equal, Area };
 
 struct CurveStats {
   SnapStats snap;                 ///< the vertices' snap
@@ -37,6 +49,7 @@ struct CurveStats {
   int straight_edges = 0;         ///< boundary edges left straight (fallback)
   std::string blend;              ///< "transfinite" (cells' own) or "smooth" (across cells)
   bool hanging = false;           ///< the mesh has 2:1 hanging nodes (transfinite blend only)
+  double max_stretch = 0;         ///< BoundaryNodes::Area: largest |alpha| over the edges
 };
 
 /// Snaps m's boundary nodes to g (snap_to_geometry) and, for q >= 2, gives m geometric order q as
@@ -49,6 +62,6 @@ struct CurveStats {
 /// curve; counted in straight_edges) instead of the error — a sliver cell whose angle at a
 /// boundary node is smaller than the arc's turn cannot take a curved edge.
 CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const std::string& path,
-                                bool fallback = false);
+                                bool fallback = false, BoundaryNodes nodes = BoundaryNodes::Equal);
 
 }  // namespace quadapt

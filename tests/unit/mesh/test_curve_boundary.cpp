@@ -12,6 +12,8 @@
 #include "mesh/curve_boundary.hpp"
 #include "mesh/curved.hpp"
 #include "mesh/validate.hpp"
+#include "fem/basis.hpp"
+#include <functional>
 #include "refine/refine.hpp"
 
 using namespace quadapt;
@@ -100,6 +102,79 @@ TEST_CASE("curve_boundary_cells: disk at q = 2 to 6: boundary nodes on the circl
       v.allow_curved = true;
       CHECK_NOTHROW(validate_mesh(m, "disk.msh", v));
     }
+}
+
+// Integral of a smooth f over the boundary edges (local edge 1 of the disk's ring cells) of m.
+double boundary_integral(const Mesh& m, const std::function<double(const Vec2&)>& f) {
+  static const Rule1D rule = gauss_legendre(12);
+  double s = 0;
+  for (int c = 0; c < m.num_cells(); ++c)
+    for (const BoundaryEdge& be : m.boundary)
+      if (be.v[0] == m.cells[c].v[1] && be.v[1] == m.cells[c].v[2]) {
+        const CellMap G(m, c);
+        for (size_t k = 0; k < rule.x.size(); ++k) {
+          Vec2 x, n;
+          s += 0.5 * rule.w[k] * edge_geometry(G, 1, 0.5 * (rule.x[k] + 1), x, n) * f(x);
+        }
+      }
+  return s;
+}
+
+TEST_CASE("curve_boundary_cells: area-matched edge nodes make boundary integrals converge at >= 2q for odd q") {
+  // The curve r(t) = 1 + e cos 3t (e = 0.2; curvature varies from -0.1 to 3.1 — not a conic, whose
+  // affine image of a circle would behave as the circle): the disk mesh mapped by
+  // x (1 + e (x^3 - 3 x y^2)), which is r(t) on the unit circle. f smooth; reference by the
+  // periodic trapezoidal rule (exact to rounding). Measured |error| on n = 2, 4, 8, 16 (8n edges):
+  // q = 3 equal 1.0e-3, 7.9e-5, 5.2e-6, 3.3e-7 (rates 3.67, 3.92, 3.98), area 6.4e-5, 3.6e-7,
+  // 5.1e-9, 8.1e-11 (7.47, 6.15, 5.98); q = 5 equal 5.7e-6, 2.2e-7, 3.9e-9, 6.4e-11, area
+  // 1.6e-6, 4.7e-9, 2.7e-11, 3.1e-13 (the last near rounding). (With e = 0.2 the curve has
+  // inflection points, where moving nodes along the curve hardly changes the area: the stretch
+  // grows, and q = 3 gains a factor 32 at n = 8 but converges at 4.7 there.)
+  const double E = 0.05;
+  auto f = [](const Vec2& x) { return std::exp(0.3 * x.x()) * (1 + 0.5 * std::sin(x.x() + 0.7 * x.y())) + x.x() * x.x() * x.y(); };
+  double exact = 0;
+  for (int k = 0; k < 4096; ++k) {
+    const double t = 2 * M_PI * k / 4096, r = 1 + E * std::cos(3 * t), dr = -3 * E * std::sin(3 * t);
+    exact += f(r * Vec2(std::cos(t), std::sin(t))) * std::hypot(r, dr);
+  }
+  exact *= 2 * M_PI / 4096;
+  auto c = [&](double t) -> Vec2 { return (1 + E * std::cos(3 * t)) * Vec2(std::cos(t), std::sin(t)); };
+  auto dc = [&](double t) -> Vec2 {
+    return -3 * E * std::sin(3 * t) * Vec2(std::cos(t), std::sin(t)) + (1 + E * std::cos(3 * t)) * Vec2(-std::sin(t), std::cos(t));
+  };
+  auto ddc = [&](double t) -> Vec2 {
+    const Vec2 u(std::cos(t), std::sin(t)), v(-std::sin(t), std::cos(t));
+    return -9 * E * std::cos(3 * t) * u - 6 * E * std::sin(3 * t) * v - (1 + E * std::cos(3 * t)) * u;
+  };
+  const FunctionGeometry g("star.geo", {FunctionGeometry::Curve{"circle", 0, 2 * M_PI, c, dc, ddc}});
+  auto star = [&](int n) {
+    Mesh m = curved_disk(n, 1);
+    for (Vec2& x : m.nodes) x *= 1 + E * (x.x() * x.x() * x.x() - 3 * x.x() * x.y() * x.y());
+    return m;
+  };
+  for (int q : {2, 3, 4, 5}) {
+    double prev_equal = 0, prev_area = 0;
+    for (int n : {2, 4, 8, 16}) {
+      CAPTURE(q);
+      CAPTURE(n);
+      Mesh me = star(n), ma = star(n);
+      curve_boundary_cells(me, g, q, "star.msh");
+      const CurveStats st = curve_boundary_cells(ma, g, q, "star.msh", false, BoundaryNodes::Area);
+      CHECK(st.max_distance < 1e-12);  // the nodes stay on the curve
+      const double ee = std::abs(boundary_integral(me, f) - exact), ea = std::abs(boundary_integral(ma, f) - exact);
+      if (q % 2 == 0) {
+        CHECK(ma.curved.points == me.curved.points);  // even q: nothing to gain, equal steps
+        CHECK(st.max_stretch == 0);
+      }
+      if (q == 3 && n == 16) {
+        CHECK(std::log2(prev_area / ea) > 5.7);   // 2q
+        CHECK(std::log2(prev_equal / ee) < 4.2);  // q + 1
+      }
+      if (q == 5 && n >= 4) CHECK(ea < 0.02 * ee);
+      prev_equal = ee;
+      prev_area = ea;
+    }
+  }
 }
 
 TEST_CASE("curve_boundary_cells: a refined disk (midpoints snapped first) equals the finer disk's region") {
