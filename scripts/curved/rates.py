@@ -9,6 +9,8 @@ log2(e(N/2) / e(N)) when the levels double). With --wall-radius R the case's fun
 is compared with its value on the true circle of radius R around the origin (periodic
 trapezoidal rule, exact to rounding), and a second table gives those errors and rates.
 
+--boundary-nodes equal|area: the curved meshes are gmsh's straight ones curved by meshconvert
+  (`--geometry GEO --order q --boundary-nodes ...`; area: docs/curved.md) instead of gmsh -order q.
 --check-curved D: exit 1 unless the last curved L2 rate of every p is >= p + D.
 --check-straight X: exit 1 unless the last straight-sided L2 rate of every p >= 2 is <= X.
 --check-functional D: exit 1 unless the last curved functional rate of every p is >= 2 p - D.
@@ -30,10 +32,18 @@ def run(cmd):
     subprocess.run(cmd, check=True)
 
 
-def mesh(geo, q, n, out):
-    path = os.path.join(out, f"mesh-q{q}-N{n}.msh")
+def mesh(geo, q, n, out, nodes="gmsh"):
+    """Gmsh's mesh of order q (nodes = gmsh), or Gmsh's straight mesh curved by meshconvert with
+    --boundary-nodes NODES (equal or area)."""
+    if nodes == "gmsh" or q == 1:
+        path = os.path.join(out, f"mesh-q{q}-N{n}.msh")
+        if not os.path.exists(path):
+            run(["gmsh", "-2", "-v", "0", "-order", str(q), "-setnumber", "N", str(n), geo, "-o", path])
+        return path
+    path = os.path.join(out, f"mesh-q{q}-{nodes}-N{n}.msh")
     if not os.path.exists(path):
-        run(["gmsh", "-2", "-v", "0", "-order", str(q), "-setnumber", "N", str(n), geo, "-o", path])
+        run(["meshconvert", "-q", mesh(geo, 1, n, out), "--geometry", geo, "--order", str(q),
+             "--boundary-nodes", nodes, "-o", path])
     return path
 
 
@@ -80,6 +90,9 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--kinds", nargs="+", default=["curved", "straight"], choices=["curved", "straight"])
     ap.add_argument("--q-plus", type=int, default=0, help="curved cells of order min(p + K, 6)")
+    ap.add_argument("--boundary-nodes", default="gmsh", choices=["gmsh", "equal", "area"],
+                    help="curved meshes from gmsh -order q (default), or gmsh's straight mesh curved by "
+                         "meshconvert --geometry GEO --order q --boundary-nodes equal|area")
     ap.add_argument("--wall-radius", type=float, default=None)
     ap.add_argument("--check-curved", type=float, default=None)
     ap.add_argument("--check-straight", type=float, default=None)
@@ -95,8 +108,8 @@ def main():
             q = min(p + a.q_plus, 6) if kind == "curved" else 1
             per_kind[kind], fper_kind[kind] = [], []
             for n in a.levels:
-                m = mesh(a.geo, q, n, a.out)
-                sol = os.path.join(a.out, f"sol-{kind}-p{p}-N{n}.msh")
+                m = mesh(a.geo, q, n, a.out, a.boundary_nodes)
+                sol = os.path.join(a.out, f"sol-{kind}-q{q}-{a.boundary_nodes}-p{p}-N{n}.msh")
                 run(["dgsolve", "-q", m, "-c", a.case, "-p", str(p), "-o", sol])
                 r = json.load(open(sol[:-4] + ".json"))
                 per_kind[kind].append((r["cells"], r["l2_error"]))
@@ -104,7 +117,8 @@ def main():
                     fper_kind[kind].append((r["cells"], abs(r["functional"] - j_true)))
         rows.append((p, per_kind))
         frows.append((p, fper_kind))
-    qdesc = "q = p" if a.q_plus == 0 else f"q = min(p + {a.q_plus}, 6)"
+    qdesc = ("q = p" if a.q_plus == 0 else f"q = min(p + {a.q_plus}, 6)") + \
+        ("" if a.boundary_nodes == "gmsh" else f", meshconvert --boundary-nodes {a.boundary_nodes}")
     print(table(f"L2 error, {os.path.basename(a.case)} on {os.path.basename(a.geo)} (curved: {qdesc}; straight: q = 1)",
                 rows, a.levels, a.kinds))
     if j_true is not None:
