@@ -13,7 +13,10 @@
 #include "dg/linear_solver.hpp"
 #include "dg_test_meshes.hpp"
 #include "../mesh/curved_disk.hpp"
+#include "core/error.hpp"
 #include "mesh/curve_boundary.hpp"
+#include "mesh/curved.hpp"
+#include "mesh/topology.hpp"
 #include "mesh/geometry.hpp"
 #include "refine/refine.hpp"
 
@@ -159,6 +162,27 @@ TEST_CASE("curved cells with 2:1 hanging nodes: the refined boundary ring keeps 
         Mesh conforming = curvedtest::curved_disk(n, 1);
         curve_boundary_cells(conforming, circle, p, "disk.msh");
         CHECK(err[1] < solve_error(conforming, cs, p));
+      }
+      if (n == 2 && p == 2) {
+        // a coarse edge at a hanging node bent (its middle control point moved by 1e-3 along the
+        // normal): its trace leaves its halves', and the DG refuses the mesh naming the cells
+        Mesh bent = mesh(n, p);
+        const Topology topo = build_topology(bent);
+        for (const Face& f : topo.faces) {
+          if (f.is_conforming() || f.is_boundary()) continue;
+          const int side = (f.s_b[0] - f.s_a[0]) == 1 ? 1 : 0;  // the coarse cell's side
+          const int c = f.cell[side];
+          const std::vector<int> idx = edge_control_points(p, f.local_edge[side]);
+          Vec2* X = bent.curved.points.data() + static_cast<size_t>(c) * bent.curved.per_cell();
+          X[idx[1]] += 1e-3 * f.normal;
+          break;
+        }
+        try {
+          DGDiscretization dg(bent, cs, p);
+          FAIL("a bent coarse edge at a hanging node was accepted");
+        } catch (const InputError& e) {
+          CHECK(std::string(e.what()).find("curved edges differ") != std::string::npos);
+        }
       }
       prev[0] = err[0];
       prev[1] = err[1];
