@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   app.add_option("QUAD", in, "Input quad mesh (.msh)")->required()->check(CLI::ExistingFile);
   app.add_option("-o,--output", out, "Output mesh (.msh); report beside it as .json")->required();
   app.add_option("--sweeps", sweeps,
-                 "Smoothing sweeps over the interior nodes (default: 3 for angle, at most 30 for shape)")
+                 "Smoothing sweeps over the interior nodes (default: 3 for angle, at most 60 for shape)")
       ->check(NonNegativeValue);
   app.add_option("--method", method,
                  "angle (Zhou & Shimada; the default without --frame) or shape (corner fit to the frame's "

@@ -91,7 +91,7 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt = {}, const NodeMetri
 /// of corner angle 0.0 degrees.) Nodes in index order (deterministic); boundary and hanging
 /// nodes fixed.
 struct ShapeSmoothOptions {
-  int sweeps = 30;            ///< Gauss-Seidel passes at most
+  int sweeps = 60;            ///< Gauss-Seidel passes at most
   /// a node is visited again only while a node of its cells moved more than this times its mean
   /// edge length in the sweep before; stop when none did
   double tolerance = 1e-3;
