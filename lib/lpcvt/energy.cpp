@@ -277,6 +277,8 @@ EnergyTimers& EnergyTimers::operator+=(const EnergyTimers& o) {
   evaluations += o.evaluations;
   updates += o.updates;
   rebuilds += o.rebuilds;
+  box_queries += o.box_queries;
+  box_hits += o.box_hits;
   return *this;
 }
 EnergyWorkspace::~EnergyWorkspace() = default;
@@ -363,6 +365,11 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
     T.delaunay += std::chrono::duration<double>(t1 - t0).count();
     T.updates = ws->impl->updates;
     T.rebuilds = ws->impl->rebuilds;
+    T.box_queries = T.box_hits = 0;
+    for (const auto& th : ws->impl->threads) {
+      T.box_queries += th.rvd.box_queries;
+      T.box_hits += th.rvd.box_hits;
+    }
     T.integrate += std::chrono::duration<double>(t2 - t1).count();
     ++T.evaluations;
   }

@@ -74,6 +74,8 @@ struct EnergyTimers {
   double delaunay = 0, integrate = 0;
   long evaluations = 0;
   long updates = 0, rebuilds = 0;  ///< Delaunay graphs updated by flips / rebuilt
+  long box_queries = 0, box_hits = 0;  ///< metric cells' security-radius searches: site-tree
+                                       ///< queries / answered from a cached box (rvd.hpp)
   EnergyTimers& operator+=(const EnergyTimers& o);
 };
 

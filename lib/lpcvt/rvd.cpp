@@ -1,5 +1,7 @@
 #include "lpcvt/rvd.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <limits>
 
 namespace quadapt::lpcvt {
@@ -73,6 +75,10 @@ void clip_by_bisector(std::vector<Vec2>& v, std::vector<int>& label, const Vec2&
   clip_halfplane(v, label, n, n.dot(0.5 * (xi + xj)), j, tmp_v, tmp_l);
 }
 
+namespace {
+std::atomic<long> next_rvd_id{1};
+}  // namespace
+
 MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
                                std::vector<std::array<int, 3>> tris) {
   int hint = -1;
@@ -91,7 +97,7 @@ MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& si
 }
 
 RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites)
-    : bg_(&bg), sites_(&sites),
+    : bg_(&bg), sites_(&sites), id_(next_rvd_id++),
       own_(std::make_unique<DelaunayGraph>(sites, bg.metric_cells(), !bg.metric_cells())) {
   dt_ = own_.get();
   if (bg.metric_cells()) {
@@ -102,7 +108,7 @@ RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec
 }
 
 RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const DelaunayGraph& dt)
-    : bg_(&bg), sites_(&sites), dt_(&dt) {
+    : bg_(&bg), sites_(&sites), id_(next_rvd_id++), dt_(&dt) {
   if (bg.metric_cells()) {
     own_mg_ = std::make_unique<MetricGraph>(build_metric_graph(bg, sites, dt));
     mg_ = own_mg_.get();
@@ -112,7 +118,7 @@ RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec
 
 RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const DelaunayGraph& dt,
                                      const MetricGraph* mg)
-    : bg_(&bg), sites_(&sites), dt_(&dt), mg_(mg) {
+    : bg_(&bg), sites_(&sites), id_(next_rvd_id++), dt_(&dt), mg_(mg) {
   find_starts();
 }
 
@@ -175,6 +181,36 @@ void RestrictedVoronoi::find_starts() {
 }
 
 
+std::pair<const int*, const int*> RestrictedVoronoi::security_candidates(int i, const Vec2& ext,
+                                                                         RvdWorkspace& ws) const {
+  const std::vector<Vec2>& x = *sites_;
+  if (ws.box_owner != id_ || ws.box_gen.size() != x.size()) {
+    if (ws.box_gen.size() != x.size() || ws.box_epoch == std::numeric_limits<int>::max()) {
+      ws.box_gen.assign(x.size(), 0);
+      ws.box_ext.resize(x.size());
+      ws.box_at.resize(x.size());
+      ws.box_epoch = 0;
+    }
+    ++ws.box_epoch;
+    ws.box_owner = id_;
+    ws.box_sites.clear();
+  }
+  if (ws.box_gen[i] == ws.box_epoch && ext.x() <= ws.box_ext[i].x() && ext.y() <= ws.box_ext[i].y()) {
+    ++ws.box_hits;
+    const int* b = ws.box_sites.data() + ws.box_at[i][0];
+    return {b, b + ws.box_at[i][1]};
+  }
+  ++ws.box_queries;
+  const Vec2 e = kBoxMargin * ext;
+  const int at = static_cast<int>(ws.box_sites.size());
+  tree_.query(x[i] - e, x[i] + e, ws.box_sites);
+  ws.box_gen[i] = ws.box_epoch;
+  ws.box_ext[i] = e;
+  ws.box_at[i] = {at, static_cast<int>(ws.box_sites.size()) - at};
+  const int* b = ws.box_sites.data() + at;
+  return {b, b + ws.box_at[i][1]};
+}
+
 int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& ws) const {
   const int s0 = start_[q];
   if (s0 < 0) return 0;
@@ -233,12 +269,16 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
         for (const Vec2& v : p.v) R2 = std::max(R2, (v - x[i]).dot(G * (v - x[i])));
         const Mat2 Gi = G.inverse();
         const Vec2 ext(2 * std::sqrt(R2 * Gi(0, 0)), 2 * std::sqrt(R2 * Gi(1, 1)));
+        const std::pair<const int*, const int*> box = security_candidates(i, ext, ws);
         ws.ring.clear();
-        tree_.query(x[i] - ext, x[i] + ext, ws.ring);
+        for (const int* j = box.first; j != box.second; ++j) {
+          if (ws.seen[*j] == sg) continue;
+          const Vec2 d = x[*j] - x[i];
+          if (d.dot(G * d) < 4 * R2) ws.ring.push_back(*j);
+        }
+        // a box query lists its sites in the tree's fixed (pre-)order, so a cached larger box
+        // gives these sites in the order a query of this box would: the same piece
         for (int j : ws.ring) {
-          if (ws.seen[j] == sg) continue;
-          const Vec2 d = x[j] - x[i];
-          if (d.dot(G * d) >= 4 * R2) continue;
           clip_by_bisector(p.v, p.label, x[i], x[j], G, j, ws.tmp_v, ws.tmp_l);
           if (p.v.empty()) break;
         }
@@ -271,9 +311,10 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
   return count;
 }
 
-std::vector<RvdPiece> RestrictedVoronoi::all_pieces() const {
+std::vector<RvdPiece> RestrictedVoronoi::all_pieces(RvdWorkspace* w) const {
   std::vector<RvdPiece> all, tmp;
-  RvdWorkspace ws;
+  RvdWorkspace local;
+  RvdWorkspace& ws = w ? *w : local;
   for (int q = 0; q < bg_->num_cells(); ++q) {
     const int n = pieces(q, tmp, ws);
     for (int k = 0; k < n; ++k) all.push_back(tmp[k]);

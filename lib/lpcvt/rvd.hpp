@@ -20,7 +20,9 @@
 // the gradient needs (lpcvt/energy.hpp): a Q vertex (constant), a bisector/Q-edge intersection
 // (a "clip point", depends on x_i, x_j), or a bisector/bisector intersection (a Voronoi vertex,
 // the circumcentre of x_i, x_j, x_k).
+#include <array>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "lpcvt/background.hpp"
@@ -48,7 +50,15 @@ struct RvdWorkspace {
   // metric cells: the sites examined for one piece (security-radius search)
   std::vector<int> seen;    ///< per site: the piece (generation) that last examined it
   int seen_gen = 0;
-  std::vector<int> ring;    ///< sites to examine
+  std::vector<int> ring;    ///< sites to clip by (within the security radius), in tree order
+  // the last box query of each site (security_candidates): valid for one RestrictedVoronoi
+  long box_owner = 0;               ///< its id
+  int box_epoch = 0;
+  std::vector<int> box_gen;         ///< per site: the epoch of its cached box
+  std::vector<Vec2> box_ext;        ///< per site: the box's half extents around the site
+  std::vector<std::array<int, 2>> box_at;  ///< per site: offset and length in box_sites
+  std::vector<int> box_sites;       ///< the boxes' sites, one after another
+  long box_queries = 0, box_hits = 0;  ///< site-tree queries made / answered from a cached box
 };
 
 class RestrictedVoronoi {
@@ -73,12 +83,14 @@ class RestrictedVoronoi {
   /// warm). Thread-safe (const) with one workspace and one `out` per thread.
   int pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& ws) const;
 
-  /// All pieces of all cells (serial; for pictures and tests), ordered by cell.
-  std::vector<RvdPiece> all_pieces() const;
+  /// All pieces of all cells (serial; for pictures and tests), ordered by cell; with `ws`, that
+  /// workspace (its counters) instead of a local one.
+  std::vector<RvdPiece> all_pieces(RvdWorkspace* ws = nullptr) const;
 
  private:
   const Background* bg_;
   const std::vector<Vec2>* sites_;
+  long id_;  ///< unique per instance (process-wide): the workspaces' box caches belong to one
   std::unique_ptr<DelaunayGraph> own_;
   std::unique_ptr<MetricGraph> own_mg_;
   const DelaunayGraph* dt_ = nullptr;
@@ -86,6 +98,12 @@ class RestrictedVoronoi {
   SiteTree tree_;  ///< metric cells: box queries of the security-radius search
   std::vector<int> start_;
   void find_starts();  ///< per integration cell: nearest site to its centroid (in G_Q)
+  /// The sites of a box around x_i with half extents at least `ext`: from the workspace's cache
+  /// when this thread's last query for site i (this evaluation) covered it, else a site-tree
+  /// query of kBoxMargin * ext, cached (a site's pieces in other cells mostly fit in it). A
+  /// superset of the sites in x_i +- ext, in the tree's order (SiteTree::query).
+  std::pair<const int*, const int*> security_candidates(int i, const Vec2& ext, RvdWorkspace& ws) const;
+  static constexpr double kBoxMargin = 1.1;
 };
 
 /// The metric Delaunay graph of `sites` in bg's frame (metric_graph.hpp): the CCW triangles

@@ -12,8 +12,9 @@ class SiteTree {
  public:
   SiteTree() = default;
   explicit SiteTree(const std::vector<Vec2>& sites);
-  /// Appends to `out` the indices of the sites in the closed box [lo, hi] (in tree order:
-  /// deterministic). Thread-safe.
+  /// Appends to `out` the indices of the sites in the closed box [lo, hi], in tree order: the
+  /// restriction of one fixed order of all sites (the tree's pre-order: node, lower half, upper
+  /// half) to the box, so the sites of a smaller box come in the same relative order. Thread-safe.
   void query(const Vec2& lo, const Vec2& hi, std::vector<int>& out) const;
 
  private:

@@ -3,6 +3,7 @@
 // differences, and the lattice seed's registration with the boundary.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -12,6 +13,7 @@
 #include "lpcvt/lattice.hpp"
 #include "lpcvt/metric_graph.hpp"
 #include "lpcvt/rvd.hpp"
+#include "lpcvt/site_tree.hpp"
 
 using namespace lpcvt_test;
 
@@ -208,4 +210,63 @@ TEST_CASE("lattice seed registration: in phase with an aligned boundary, unchang
   std::vector<Vec2> spread;
   for (int k = 0; k < 40; ++k) spread.emplace_back(0.2 * (k / 40.0), 0.02 * ((k * 7 % 40) / 40.0));
   CHECK((register_seed(y, M, spread, 1e9) - y).norm() < 1e-12);
+}
+
+TEST_CASE("site tree: a box query lists its sites in one fixed order, a larger box's filtered list is the same") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec2> x(3000);
+  for (auto& p : x) p = Vec2(u(rng), u(rng) * u(rng));  // denser towards y = 0
+  SiteTree tree(x);
+  for (int k = 0; k < 200; ++k) {
+    const Vec2 c(u(rng), 0.3 * u(rng)), e(0.05 * u(rng), 0.02 * u(rng));
+    std::vector<int> small, big, brute;
+    tree.query(c - e, c + e, small);
+    tree.query(c - 1.7 * e, c + 1.7 * e, big);
+    for (int i = 0; i < static_cast<int>(x.size()); ++i)
+      if (std::abs(x[i].x() - c.x()) <= e.x() && std::abs(x[i].y() - c.y()) <= e.y()) brute.push_back(i);
+    std::vector<int> filtered;
+    for (int i : big)
+      if (std::abs(x[i].x() - c.x()) <= e.x() && std::abs(x[i].y() - c.y()) <= e.y()) filtered.push_back(i);
+    CHECK(filtered == small);
+    std::sort(small.begin(), small.end());
+    CHECK(small == brute);
+  }
+}
+
+TEST_CASE("metric pieces: the cached security boxes give the pieces of fresh site-tree queries, bit for bit") {
+  // a graded frame (sizes 4x apart across the square, 5:1, rotating): a site's pieces in
+  // neighbouring cells reuse its box (box_hits), which must change nothing
+  Mesh m = saddle_square(12);
+  set_frame(m, 0.2, 0.04, 0.3);
+  {
+    quadapt::CellField* f = m.cell_field("Vinv");
+    for (int c = 0; c < m.num_cells(); ++c) {
+      const Vec2 z = (m.nodes[m.cells[c].v[0]] + m.nodes[m.cells[c].v[2]]) / 2;
+      const double s = std::pow(4.0, (z.x() + 1.3) / 2.6), th = 0.3 + 0.8 * z.y();
+      const Mat2 M = rotated_metric(0.2 / s, 0.04 / s, th);
+      for (int r = 0; r < 2; ++r)
+        for (int q = 0; q < 2; ++q) f->values[9 * c + 3 * r + q] = M(r, q);
+    }
+  }
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  bg.set_metric_cells(true);
+  int nfixed = 0;
+  auto x = boundary_and_random(bg, 1500, 21, nfixed);
+  RestrictedVoronoi rvd(bg, x);
+  RvdWorkspace shared;
+  const std::vector<RvdPiece> cached = rvd.all_pieces(&shared);
+  CHECK(shared.box_hits > shared.box_queries / 4);  // the cache is used
+  std::vector<RvdPiece> fresh, tmp;
+  for (int q = 0; q < bg.num_cells(); ++q) {
+    RvdWorkspace ws;  // a new workspace per cell: no site's box is reused across cells
+    const int n = rvd.pieces(q, tmp, ws);
+    CHECK(ws.box_hits == 0);
+    for (int k = 0; k < n; ++k) fresh.push_back(tmp[k]);
+  }
+  REQUIRE(fresh.size() == cached.size());
+  int differ = 0;
+  for (size_t k = 0; k < fresh.size(); ++k)
+    differ += fresh[k].site != cached[k].site || fresh[k].v != cached[k].v || fresh[k].label != cached[k].label;
+  CHECK(differ == 0);
 }
