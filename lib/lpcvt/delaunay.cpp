@@ -133,11 +133,13 @@ void DelaunayGraph::tables() {
   for (int i = 0; i < n; ++i) ptr_[i + 1] += ptr_[i];
   adj_.resize(ptr_[n]);
   if (with_voronoi_) vor_.assign(ptr_[n], Vec2::Zero());
+  if (with_triangles_) tris_.reserve(dt.number_of_faces());
   for (int i = 0; i < n; ++i) {
     DT::Vertex_handle v = impl_->vh[i];
     if (v == DT::Vertex_handle() || ptr_[i + 1] == ptr_[i]) continue;
     auto f = dt.incident_faces(v, first[i]), done = f;
     int k = ptr_[i];
+    const size_t first_tri = tris_.size();
     do {
       const int iv = f->index(v);
       auto a = f->vertex(DT::ccw(iv));
@@ -145,25 +147,14 @@ void DelaunayGraph::tables() {
         if (with_voronoi_ && !hull_[i]) vor_[k] = cc[f->info()];
         adj_[k++] = a->info();
       }
-    } while (++f != done);
-  }
-  if (with_triangles_) {
-    // sorted by (smallest vertex, the vertices as CGAL's face holds them): gathered per site, the
-    // faces whose smallest vertex it is, each group sorted (a few faces; no global sort)
-    tris_.reserve(dt.number_of_faces());
-    for (int i = 0; i < n; ++i) {
-      DT::Vertex_handle v = impl_->vh[i];
-      if (v == DT::Vertex_handle()) continue;
-      const size_t first_tri = tris_.size();
-      auto f = dt.incident_faces(v), done = f;
-      if (f == nullptr) continue;
-      do {
-        if (dt.is_infinite(f)) continue;
+      // the triangles sorted by (smallest vertex, the vertices as CGAL's face holds them):
+      // gathered at their smallest vertex, each group sorted (a few faces; no global sort)
+      if (with_triangles_ && !dt.is_infinite(f)) {
         const std::array<int, 3> t = {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
         if (std::min({t[0], t[1], t[2]}) == i) tris_.push_back(t);
-      } while (++f != done);
-      std::sort(tris_.begin() + first_tri, tris_.end());
-    }
+      }
+    } while (++f != done);
+    std::sort(tris_.begin() + first_tri, tris_.end());
   }
 }
 

@@ -137,7 +137,10 @@ void RestrictedVoronoi::find_starts() {
   // nearest in G_Q: greedy walk over the metric graph from the Euclidean nearest site (exact for
   // a Delaunay graph of the mapped sites; the centroid then lies in the start site's cell)
   const std::vector<Vec2>& x = *sites_;
-  for (int q = 0; q < bg.num_cells(); ++q) {
+  // each cell on its own (any thread, same answers); parallel where there is enough work
+  const int nq = bg.num_cells();
+#pragma omp parallel for schedule(static) if (nq >= 256 && x.size() >= 2000)
+  for (int q = 0; q < nq; ++q) {
     int s = start_[q];
     if (s < 0) continue;
     const Mat2 G = bg.partition_metric(q);
