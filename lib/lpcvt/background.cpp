@@ -330,18 +330,20 @@ int Background::locate_near(const Vec2& y, int hint) const {
   int c = hint;
   for (int step = 0; step < 12; ++step) {
     const IntegrationCell& ic = cells_[c];
-    if (in_convex_polygon(ic.v, ic.nv, y, tol_)) return c;
-    // across the edge whose line y is farthest outside of (in distance)
+    // in_convex_polygon's test, and the edge whose line y is farthest outside of (in distance)
     int best = -1;
     double worst = 0;
+    bool inside = true;
     for (int k = 0; k < ic.nv; ++k) {
       const Vec2 e = ic.v[(k + 1) % ic.nv] - ic.v[k];
-      const double d = cross(e, y - ic.v[k]);
-      if (d < 0 && d * d > worst * e.squaredNorm()) {
-        worst = d * d / e.squaredNorm();
+      const double d = cross(e, y - ic.v[k]), e2 = e.squaredNorm();
+      if (d < 0 && d * d > tol_ * tol_ * e2) inside = false;
+      if (d < 0 && d * d > worst * e2) {
+        worst = d * d / e2;
         best = k;
       }
     }
+    if (inside) return c;
     if (best < 0 || across_[c][best] < 0) break;
     c = across_[c][best];
   }
