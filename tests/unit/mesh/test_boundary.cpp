@@ -113,13 +113,19 @@ TEST_CASE("hanging nodes: the split coarse edge is interior") {
   CHECK(m.groups.size() == 4);  // a rectangle [0,1.5]x[0,1]: four straight sides
 }
 
-TEST_CASE("partial boundary: only the missing side is added") {
+/// The 3 x 3 unit square without its "left" group (group 3) and edges.
+static Mesh square_without_left() {
   Mesh m = make_structured_quads(3, 3);
   std::vector<BoundaryEdge> keep;
   for (const auto& e : m.boundary)
     if (e.group != 3) keep.push_back(e);
   m.boundary = keep;
-  m.groups.pop_back();  // drop "left"
+  m.groups.pop_back();
+  return m;
+}
+
+TEST_CASE("partial boundary: only the missing side is added") {
+  Mesh m = square_without_left();
   CHECK(complete_boundary(m) == 3);
   REQUIRE(m.groups.size() == 4);
   CHECK(m.groups[3].name == "left");
@@ -128,12 +134,7 @@ TEST_CASE("partial boundary: only the missing side is added") {
 
 TEST_CASE("partial boundary with a group tagged INT_MAX: the added group takes the smallest free tag") {
   // A file may give a physical tag of 2147483647; "largest + 1" overflowed (found by fuzzing).
-  Mesh m = make_structured_quads(3, 3);
-  std::vector<BoundaryEdge> keep;
-  for (const auto& e : m.boundary)
-    if (e.group != 3) keep.push_back(e);
-  m.boundary = keep;
-  m.groups.pop_back();  // drop "left"
+  Mesh m = square_without_left();
   m.groups[1].tag = std::numeric_limits<int>::max();  // tags now 1, INT_MAX, 3
   CHECK(complete_boundary(m) == 3);
   REQUIRE(m.groups.size() == 4);
