@@ -229,13 +229,27 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
   // that moved more than the tolerance in the sweep before (the others' fits are unchanged)
   std::vector<char> active(nn, 1), next(nn, 0);
   st.min_angle_before = quality_summary(m).min_angle_deg;
-  for (int sweep = 0; sweep < opt.sweeps; ++sweep) {
-    bool any = false;
-    if (metric)  // each corner is fitted in the metric at its own node (frozen for the sweep)
-      for (int v = 0; v < nn; ++v)
-        if (!topo.node_cells[v].empty()) node_T[v] = metric(m.nodes[v]);
+  // Colours: nodes of one colour share no cell, so within a colour every node's fit and guard
+  // read only positions that no other node of that colour writes — the colour's nodes move in
+  // parallel and the result does not depend on the thread count (greedy colouring in index
+  // order; colour by colour, Gauss-Seidel across colours).
+  std::vector<std::vector<int>> colours;
+  {
+    std::vector<int> colour(nn, -1), seen(nn, -1);
     for (int i = 0; i < nn; ++i) {
-      if (topo.fixed[i] || !active[i]) continue;
+      if (topo.fixed[i]) continue;
+      for (int c : topo.node_cells[i])
+        for (int k = 0; k < m.cells[c].nv; ++k)
+          if (colour[m.cells[c].v[k]] >= 0) seen[colour[m.cells[c].v[k]]] = i;
+      int col = 0;
+      while (col < nn && seen[col] == i) ++col;
+      colour[i] = col;
+      if (col >= static_cast<int>(colours.size())) colours.resize(col + 1);
+      colours[col].push_back(i);
+    }
+  }
+  // one node's fit and guarded move; marks the nodes to revisit when it moved beyond the tolerance
+  auto update = [&](int i, SmoothStats& local, std::vector<int>& marks) {
       const Vec2 xi = m.nodes[i];
       const Mat2& T = node_T[i];
       // normal equations of sum over the corner terms |T_j (x_i - x_ref) - b|^2 in x_i
@@ -262,7 +276,7 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
           const Vec2 a0 = Tj * (xn - xj), a1 = Tj * (xp - xj);
           Vec2 z(0.5 * (a0.x() + e1.x() * a1.x() + e1.y() * a1.y()), 0.5 * (a0.y() + e1.x() * a1.y() - e1.y() * a1.x()));
           const double r = z.norm();
-          if (!(r > 0) || !std::isfinite(r)) continue;
+          if (!(r > 0) || !std::isfinite(r)) return;
           z *= std::clamp(r, lo, hi) / r;
           const Vec2 b0 = z, b1(z.x() * e1.x() - z.y() * e1.y(), z.x() * e1.y() + z.y() * e1.x());
           if (j == k) {  // |T_i (x_n - x_i) - b0|^2 + |T_i (x_p - x_i) - b1|^2
@@ -277,9 +291,9 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
           }
         }
       }
-      if (nsize == 0 || !(A.determinant() > 0)) continue;
+      if (nsize == 0 || !(A.determinant() > 0)) return;
       const Vec2 step = A.inverse() * rhs - xi;
-      if (!(step.norm() > 0) || !std::isfinite(step.x()) || !std::isfinite(step.y())) continue;
+      if (!(step.norm() > 0) || !std::isfinite(step.x()) || !std::isfinite(step.y())) return;
       const auto& cells = topo.node_cells[i];
       const Mat2 I = Mat2::Identity();
       const double before = cells_min_sine(m, cells, T), before_phys = cells_min_sine(m, cells, I);
@@ -287,12 +301,37 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
         return cells_min_sine(m, cells, T) >= std::min(before, opt.min_sine) &&
                cells_min_sine(m, cells, I) >= std::min(before_phys, opt.min_sine_physical);
       });
-      const double d = count_move(st, h, step);
-      if (d < 0) continue;
-      if (d > opt.tolerance * (size / nsize)) {
-        any = true;
+      const double d = count_move(local, h, step);
+      if (d < 0) return;
+      if (d > opt.tolerance * (size / nsize))
         for (int c : cells)
-          for (int k = 0; k < m.cells[c].nv; ++k) next[m.cells[c].v[k]] = 1;
+          for (int k = 0; k < m.cells[c].nv; ++k) marks.push_back(m.cells[c].v[k]);
+  };
+  for (int sweep = 0; sweep < opt.sweeps; ++sweep) {
+    bool any = false;
+    if (metric) {  // each corner is fitted in the metric at its own node (frozen for the sweep)
+#pragma omp parallel for schedule(static)
+      for (int v = 0; v < nn; ++v)
+        if (!topo.node_cells[v].empty()) node_T[v] = metric(m.nodes[v]);
+    }
+    for (const std::vector<int>& nodes : colours) {
+      const int nc = static_cast<int>(nodes.size());
+#pragma omp parallel if (nc >= 2048)
+      {
+        SmoothStats local;
+        std::vector<int> marks;
+#pragma omp for schedule(static) nowait
+        for (int q = 0; q < nc; ++q)
+          if (active[nodes[q]]) update(nodes[q], local, marks);
+#pragma omp critical(shape_smooth_merge)
+        {  // sums, a maximum and flags: the same in any merge order
+          st.moves_full += local.moves_full;
+          st.moves_reduced += local.moves_reduced;
+          st.moves_rejected += local.moves_rejected;
+          st.max_displacement = std::max(st.max_displacement, local.max_displacement);
+          for (int v : marks) next[v] = 1;
+          any = any || !marks.empty();
+        }
       }
     }
     ++st.sweeps;
