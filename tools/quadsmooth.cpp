@@ -32,7 +32,9 @@ int main(int argc, char** argv) {
             "--method shape (the default with --frame) fits every corner, mapped by the frame's "
             "metric, to a square of the frame's size instead (a local/global least-squares fit: "
             "right angles AND target edge lengths; no minimum-angle guarantee, only no inverted "
-            "cell; docs/quadsmooth.md). "
+            "cell; docs/quadsmooth.md); its sweeps go colour by colour (no two nodes of a colour "
+            "share a cell) and move a colour's nodes in parallel, so the mesh is the same for any "
+            "--threads. "
             "Report: sweeps, moves accepted/reduced/rejected, quality before/after.");
   std::string in, out, frame_path, method;
   SmoothOptions opt;
