@@ -260,4 +260,19 @@ int complete_boundary(Mesh& m, const BoundaryOptions& opt) {
   return static_cast<int>(missing.size());
 }
 
+std::vector<char> boundary_node_flags(const Mesh& m) {
+  std::vector<char> f(m.nodes.size(), 0);
+  std::unordered_map<std::uint64_t, int> count;
+  count.reserve(4 * m.cells.size());
+  for (const auto& c : m.cells)
+    for (int i = 0; i < c.nv; ++i) ++count[edge_key(c.v[i], c.v[(i + 1) % c.nv])];
+  for (const auto& c : m.cells)
+    for (int i = 0; i < c.nv; ++i) {
+      int a = c.v[i], b = c.v[(i + 1) % c.nv];
+      if (count[edge_key(a, b)] == 1) f[a] = f[b] = 1;
+    }
+  for (const auto& e : m.boundary) f[e.v[0]] = f[e.v[1]] = 1;
+  return f;
+}
+
 }  // namespace quadapt

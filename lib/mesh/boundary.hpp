@@ -30,6 +30,10 @@ using EdgeNodes = std::array<int, 2>;
 std::uint64_t directed_edge_key(int a, int b);
 std::uint64_t edge_key(int a, int b);
 
+/// Flags (#nodes) of the nodes lying on a free edge — an edge of one cell only: boundary nodes,
+/// and the hanging nodes of 2:1 meshes (their half-edges are used once) — or on a boundary edge.
+std::vector<char> boundary_node_flags(const Mesh& m);
+
 /// Edges used by exactly one cell (conforming meshes: a hanging node's long edge counts as
 /// free), oriented as in that cell (the cell on their left when cells are counter-clockwise),
 /// in cell order. strict: throws InputError("mesh: ...") for an edge shared by more than two

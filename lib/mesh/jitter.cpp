@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <random>
-#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
+#include "mesh/boundary.hpp"
 #include "mesh/label.hpp"
 
 namespace quadapt {
@@ -28,21 +27,16 @@ int jitter_interior_nodes(Mesh& m, const JitterOptions& opt, const std::string& 
   if (!(opt.fraction > 0.0 && opt.fraction <= 0.45))
     throw InputError(file, "jitter fraction " + std::to_string(opt.fraction) + " is outside (0, 0.45]");
   const int n = m.num_nodes();
-  // Edge use counts: a node on an edge used by one cell only (boundary, or a hanging node's
-  // half-edges) stays where it is.
-  std::map<std::pair<int, int>, int> uses;
+  // a node on an edge of one cell only (boundary, or a hanging node's half-edges) stays
+  const std::vector<char> fixed = boundary_node_flags(m);
   std::vector<double> shortest(n, std::numeric_limits<double>::infinity());
   for (const Cell& c : m.cells)
     for (int e = 0; e < c.nv; ++e) {
       const int a = c.v[e], b = c.v[(e + 1) % c.nv];
-      ++uses[{std::min(a, b), std::max(a, b)}];
       const double len = (m.nodes[a] - m.nodes[b]).norm();
       shortest[a] = std::min(shortest[a], len);
       shortest[b] = std::min(shortest[b], len);
     }
-  std::vector<char> fixed(n, 0);
-  for (const auto& [k, u] : uses)
-    if (u == 1) fixed[k.first] = fixed[k.second] = 1;
   std::mt19937_64 rng(opt.seed);
   int moved = 0;
   std::vector<Vec2> x = m.nodes;

@@ -48,21 +48,6 @@ double polygon_area(const Mesh& m, const std::vector<int>& loop) {
   return 0.5 * a;
 }
 
-std::vector<char> boundary_node_flags(const Mesh& m) {
-  std::vector<char> f(m.nodes.size(), 0);
-  std::unordered_map<std::uint64_t, int> count;
-  count.reserve(4 * m.cells.size());
-  for (const auto& c : m.cells)
-    for (int i = 0; i < c.nv; ++i) ++count[edge_key(c.v[i], c.v[(i + 1) % c.nv])];
-  for (const auto& c : m.cells)
-    for (int i = 0; i < c.nv; ++i) {
-      int a = c.v[i], b = c.v[(i + 1) % c.nv];
-      if (count[edge_key(a, b)] == 1) f[a] = f[b] = 1;
-    }
-  for (const auto& e : m.boundary) f[e.v[0]] = f[e.v[1]] = 1;
-  return f;
-}
-
 int orient_counter_clockwise(Mesh& m) {
   int n = 0;
   for (int c = 0; c < m.num_cells(); ++c)

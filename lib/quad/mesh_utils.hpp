@@ -19,9 +19,6 @@ std::vector<std::vector<int>> boundary_loops(const Mesh& m);
 /// Signed area of a closed polygon given by node indices.
 double polygon_area(const Mesh& m, const std::vector<int>& loop);
 
-/// Flags of nodes lying on a free edge (boundary nodes; hanging nodes are on free edges too).
-std::vector<char> boundary_node_flags(const Mesh& m);
-
 /// Reverses every cell of negative signed area (fixing global orientation). Returns how many.
 int orient_counter_clockwise(Mesh& m);
 
