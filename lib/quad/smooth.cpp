@@ -250,62 +250,62 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
   }
   // one node's fit and guarded move; marks the nodes to revisit when it moved beyond the tolerance
   auto update = [&](int i, SmoothStats& local, std::vector<int>& marks) {
-      const Vec2 xi = m.nodes[i];
-      const Mat2& T = node_T[i];
-      // normal equations of sum over the corner terms |T_j (x_i - x_ref) - b|^2 in x_i
-      Mat2 A = Mat2::Zero();
-      Vec2 rhs = Vec2::Zero();
-      auto term = [&](const Mat2& Tj, const Vec2& xref, const Vec2& b) {
-        const Mat2 G = Tj.transpose() * Tj;
-        A += G;
-        rhs += G * xref + Tj.transpose() * b;
-      };
-      double size = 0;
-      int nsize = 0;
-      for (int c : topo.node_cells[i]) {
-        const Cell& cell = m.cells[c];
-        const int n = cell.nv, k = local_index(cell, i);
-        const Vec2& e1 = n == 3 ? tri_e1 : quad_e1;
-        for (int j : {k, (k + n - 1) % n, (k + 1) % n}) {
-          // corner j: a0 = T (x_next - x_j), a1 = T (x_prev - x_j); the similarity z (complex)
-          // with z e0 ~ a0, z e1 ~ a1, e0 = 1, in the least-squares sense: z = (a0 + conj(e1) a1) / 2
-          const Vec2& xj = m.nodes[cell.v[j]];
-          const Vec2& xn = m.nodes[cell.v[(j + 1) % n]];
-          const Vec2& xp = m.nodes[cell.v[(j + n - 1) % n]];
-          const Mat2& Tj = node_T[cell.v[j]];
-          const Vec2 a0 = Tj * (xn - xj), a1 = Tj * (xp - xj);
-          Vec2 z(0.5 * (a0.x() + e1.x() * a1.x() + e1.y() * a1.y()), 0.5 * (a0.y() + e1.x() * a1.y() - e1.y() * a1.x()));
-          const double r = z.norm();
-          if (!(r > 0) || !std::isfinite(r)) return;
-          z *= std::clamp(r, lo, hi) / r;
-          const Vec2 b0 = z, b1(z.x() * e1.x() - z.y() * e1.y(), z.x() * e1.y() + z.y() * e1.x());
-          if (j == k) {  // |T_i (x_n - x_i) - b0|^2 + |T_i (x_p - x_i) - b1|^2
-            term(Tj, xn, -b0);
-            term(Tj, xp, -b1);
-            size += (xn - xi).norm() + (xp - xi).norm();
-            nsize += 2;
-          } else if (j == (k + n - 1) % n) {  // i is the next node of corner j: |T_j (x_i - x_j) - b0|^2
-            term(Tj, xj, b0);
-          } else {  // i is the previous node of corner j
-            term(Tj, xj, b1);
-          }
+    const Vec2 xi = m.nodes[i];
+    const Mat2& T = node_T[i];
+    // normal equations of sum over the corner terms |T_j (x_i - x_ref) - b|^2 in x_i
+    Mat2 A = Mat2::Zero();
+    Vec2 rhs = Vec2::Zero();
+    auto term = [&](const Mat2& Tj, const Vec2& xref, const Vec2& b) {
+      const Mat2 G = Tj.transpose() * Tj;
+      A += G;
+      rhs += G * xref + Tj.transpose() * b;
+    };
+    double size = 0;
+    int nsize = 0;
+    for (int c : topo.node_cells[i]) {
+      const Cell& cell = m.cells[c];
+      const int n = cell.nv, k = local_index(cell, i);
+      const Vec2& e1 = n == 3 ? tri_e1 : quad_e1;
+      for (int j : {k, (k + n - 1) % n, (k + 1) % n}) {
+        // corner j: a0 = T (x_next - x_j), a1 = T (x_prev - x_j); the similarity z (complex)
+        // with z e0 ~ a0, z e1 ~ a1, e0 = 1, in the least-squares sense: z = (a0 + conj(e1) a1) / 2
+        const Vec2& xj = m.nodes[cell.v[j]];
+        const Vec2& xn = m.nodes[cell.v[(j + 1) % n]];
+        const Vec2& xp = m.nodes[cell.v[(j + n - 1) % n]];
+        const Mat2& Tj = node_T[cell.v[j]];
+        const Vec2 a0 = Tj * (xn - xj), a1 = Tj * (xp - xj);
+        Vec2 z(0.5 * (a0.x() + e1.x() * a1.x() + e1.y() * a1.y()), 0.5 * (a0.y() + e1.x() * a1.y() - e1.y() * a1.x()));
+        const double r = z.norm();
+        if (!(r > 0) || !std::isfinite(r)) return;
+        z *= std::clamp(r, lo, hi) / r;
+        const Vec2 b0 = z, b1(z.x() * e1.x() - z.y() * e1.y(), z.x() * e1.y() + z.y() * e1.x());
+        if (j == k) {  // |T_i (x_n - x_i) - b0|^2 + |T_i (x_p - x_i) - b1|^2
+          term(Tj, xn, -b0);
+          term(Tj, xp, -b1);
+          size += (xn - xi).norm() + (xp - xi).norm();
+          nsize += 2;
+        } else if (j == (k + n - 1) % n) {  // i is the next node of corner j: |T_j (x_i - x_j) - b0|^2
+          term(Tj, xj, b0);
+        } else {  // i is the previous node of corner j
+          term(Tj, xj, b1);
         }
       }
-      if (nsize == 0 || !(A.determinant() > 0)) return;
-      const Vec2 step = A.inverse() * rhs - xi;
-      if (!(step.norm() > 0) || !std::isfinite(step.x()) || !std::isfinite(step.y())) return;
-      const auto& cells = topo.node_cells[i];
-      const Mat2 I = Mat2::Identity();
-      const double before = cells_min_sine(m, cells, T), before_phys = cells_min_sine(m, cells, I);
-      const int h = guarded_move(m, i, xi, step, cells, opt.max_halvings, [&] {
-        return cells_min_sine(m, cells, T) >= std::min(before, opt.min_sine) &&
-               cells_min_sine(m, cells, I) >= std::min(before_phys, opt.min_sine_physical);
-      });
-      const double d = count_move(local, h, step);
-      if (d < 0) return;
-      if (d > opt.tolerance * (size / nsize))
-        for (int c : cells)
-          for (int k = 0; k < m.cells[c].nv; ++k) marks.push_back(m.cells[c].v[k]);
+    }
+    if (nsize == 0 || !(A.determinant() > 0)) return;
+    const Vec2 step = A.inverse() * rhs - xi;
+    if (!(step.norm() > 0) || !std::isfinite(step.x()) || !std::isfinite(step.y())) return;
+    const auto& cells = topo.node_cells[i];
+    const Mat2 I = Mat2::Identity();
+    const double before = cells_min_sine(m, cells, T), before_phys = cells_min_sine(m, cells, I);
+    const int h = guarded_move(m, i, xi, step, cells, opt.max_halvings, [&] {
+      return cells_min_sine(m, cells, T) >= std::min(before, opt.min_sine) &&
+             cells_min_sine(m, cells, I) >= std::min(before_phys, opt.min_sine_physical);
+    });
+    const double d = count_move(local, h, step);
+    if (d < 0) return;
+    if (d > opt.tolerance * (size / nsize))
+      for (int c : cells)
+        for (int k = 0; k < m.cells[c].nv; ++k) marks.push_back(m.cells[c].v[k]);
   };
   for (int sweep = 0; sweep < opt.sweeps; ++sweep) {
     bool any = false;
