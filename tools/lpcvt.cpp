@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   opt = analytic_mode ? LpcvtOptions::for_analytic() : LpcvtOptions::for_frame();
   job.metric_cells = !analytic_mode;
   if (!analytic_mode) job.gradation = 2.0;  // docs/lpcvt.md "Gradation": frames' default
+  job.free_orientation = !analytic_mode;    // docs/lpcvt.md "Orientation": frames' default
   std::string in, out, analytic, voronoi_out, init, convention = "auto", frame_out, cells_kind, geometry;
   int grid = 16, initial = -1;
   bool sampled = false, strict = false, no_exact = false;
@@ -70,6 +71,11 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(0, 1000));
   app.add_option("--gradation", job.gradation, "Anisotropic size gradation: growth per unit metric length between "
                  "neighbouring background cells (0 = none; frames' default 2, --analytic's 0); the point count is kept");
+  std::string orientation = job.free_orientation ? "boundary" : "frame";
+  app.add_option("--orientation", orientation, "Lattice orientation where the frame is nearly isotropic (stretch < 1.5): "
+                 "boundary (frames' default: a cross field aligned with the walls and the anisotropic cells; the "
+                 "metric M^T M is unchanged) or frame (the frame's own angle everywhere)")
+      ->capture_default_str()->check(CLI::IsMember({"boundary", "frame"}));
   app.add_option("--cells-per-triangle", job.cells_per_triangle, "Final all-quad cells per triangle that recombine "
                  "gives (2 in theory; 1.92-2.01 measured): the point count is sized by 2/R")
       ->capture_default_str()->check(CLI::Range(1.0, 3.0));
@@ -107,6 +113,7 @@ int main(int argc, char** argv) {
     if (!voronoi_out.empty()) tool.output(voronoi_out);
     if (!frame_out.empty()) tool.output(frame_out);
     opt.exact_count = !no_exact;
+    job.free_orientation = orientation == "boundary";
     opt.set_init(init, analytic_mode);
     if (initial >= 0) opt.initial_points = initial;
     if (!cells_kind.empty()) job.metric_cells = cells_kind == "metric";

@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "lpcvt/cross_field.hpp"
 #include "lpcvt/energy.hpp"
 #include "lpcvt/metric_filter.hpp"
 #include "lpcvt/point_quality.hpp"
@@ -80,6 +81,17 @@ void finish_background(Background& bg, const LpcvtJob& job, nlohmann::json& rep,
                    " updates): " + std::to_string(f.cells_changed) + " cells refined, largest neighbour size ratio " +
                    sci(f.max_ratio_before) + " -> " + sci(f.max_ratio_after));
     }
+  }
+  if (job.free_orientation) {
+    const CrossFieldReport x = align_free_orientation(bg);
+    rep["orientation"] = {{"mode", "boundary"}, {"free_cells", x.free_cells}, {"rotated_cells", x.rotated_cells},
+                          {"mean_rotation_deg", x.mean_rotation_deg}, {"max_rotation_deg", x.max_rotation_deg}};
+    if (x.free_cells > 0)
+      say(log, "orientation: " + std::to_string(x.free_cells) + " nearly isotropic cells free, " +
+                   std::to_string(x.rotated_cells) + " turned to the boundary-aligned cross field (mean " +
+                   sci(x.mean_rotation_deg) + " deg, largest " + sci(x.max_rotation_deg) + " deg)");
+  } else {
+    rep["orientation"] = {{"mode", "frame"}};
   }
   // Final all-quad cells the background asks for (docs/lpcvt.md, Sizes).
   const double frame_cells = bg.metric_area() / (kSplit * kSplit);

@@ -23,6 +23,7 @@ struct LpcvtJob {
   double scale = 0;               ///< M_eff = scale * M (quadapt M); 0: frame_metric_scale() (frames), 1 (analytic)
   int smooth = 0;                 ///< log-Euclidean smoothing passes of the metric (metric_filter.hpp)
   double gradation = 0;           ///< size gradation (> 1), 0 = none
+  bool free_orientation = false;  ///< turn the nearly isotropic cells to the boundary-aligned cross field (cross_field.hpp)
   double complexity = 0;          ///< target DOFs (with degree): cells = complexity / (degree+1)^2; 0 = the frame's
   int degree = -1;
   double cells_per_triangle = 2;  ///< final cells per triangle recombine gives: the point count is sized by 2/R
@@ -30,9 +31,9 @@ struct LpcvtJob {
   double cell_anisotropy = 0.9;   ///< with metric_cells: the cells' anisotropy is the metric's to this power (0..1)
 };
 
-/// The background of a frame: M_eff = scale * M, then --smooth/--gradation, the complexity
+/// The background of a frame: M_eff = scale * M, then --smooth/--gradation/--orientation, the complexity
 /// rescale and the cells-per-triangle factor. Writes report keys smoothing, gradation,
-/// frame_cells, complexity, degree, metric_rescale, target_cells, cells_per_triangle and
+/// orientation, frame_cells, complexity, degree, metric_rescale, target_cells, cells_per_triangle and
 /// options.metric_scale, options.cells. The saddle background's default is Euclidean cells
 /// (set job.metric_cells = false for the thesis's validation, as the tool does). Throws InputError for inconsistent options.
 Background frame_background(const Frame& f, const LpcvtJob& job, nlohmann::json& report,
