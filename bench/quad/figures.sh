@@ -34,6 +34,15 @@ lpcvt -q "$OUT/saddle_frame.msh" -o "$OUT/saddle_lpcvt_tri.msh"
 recombine -q "$OUT/saddle_lpcvt_tri.msh" -o "$OUT/saddle_lpcvt_q.msh"
 quadsmooth -q "$OUT/saddle_lpcvt_q.msh" --frame "$OUT/saddle_frame.msh" -o "$OUT/saddle_lpcvt.msh"
 for m in bamg bamg_s lpcvt; do meshquality "$OUT/saddle_$m.msh" --frame "$OUT/saddle_frame.msh" > "$OUT/saddle_$m.mq.json"; done
+# a curved band (issue #14, item 2): quarter-circle boundary layer about the origin, stretch 10 at
+# r = 0.6, width 0.06, isotropic h = 0.02 elsewhere, sampled on a 48x48 background (quadapt convention)
+python3 "$SRC/tests/cli/lpcvt_frame.py" "$OUT/band_frame.msh" --n 48 --kind band --h1 0.02 --stretch 10 --band-radius 0.6 --band-width 0.06
+bamgquad -q "$OUT/band_frame.msh" -o "$OUT/band_bamg.msh"
+quadsmooth -q "$OUT/band_bamg.msh" -o "$OUT/band_bamg_s.msh"
+lpcvt -q "$OUT/band_frame.msh" -o "$OUT/band_lpcvt_tri.msh"
+recombine -q "$OUT/band_lpcvt_tri.msh" -o "$OUT/band_lpcvt_q.msh"
+quadsmooth -q "$OUT/band_lpcvt_q.msh" --frame "$OUT/band_frame.msh" -o "$OUT/band_lpcvt.msh"
+for m in bamg bamg_s lpcvt; do meshquality "$OUT/band_$m.msh" --frame "$OUT/band_frame.msh" > "$OUT/band_$m.mq.json"; done
 # pictures: one boundary-layer case, the three meshes
 if command -v rsvg-convert >/dev/null; then
   c=bl15_fb_p2
@@ -42,6 +51,8 @@ if command -v rsvg-convert >/dev/null; then
   meshplot -q "$OUT/${c}_lpcvt.msh" -o "$OUT/quad-${c}-lpcvt.png" --width 500 --title "lpcvt+recombine+quadsmooth (input_${c}_3)"
   meshplot -q "$OUT/saddle_bamg.msh" -o "$OUT/quad-saddle-bamgquad.png" --width 500 --title "bamgquad, eq. 6.1 x 8"
   meshplot -q "$OUT/saddle_lpcvt.msh" -o "$OUT/quad-saddle-lpcvt.png" --width 500 --title "lpcvt+recombine+quadsmooth, eq. 6.1 x 8"
+  meshplot -q "$OUT/band_bamg.msh" -o "$OUT/quad-band-bamgquad.png" --width 500 --title "bamgquad, curved band"
+  meshplot -q "$OUT/band_lpcvt.msh" -o "$OUT/quad-band-lpcvt.png" --width 500 --title "lpcvt+recombine+quadsmooth, curved band"
 fi
 python3 "$(dirname "$0")/table.py" "$OUT" $cases > "$OUT/table.md"
 cat "$OUT/table.md"

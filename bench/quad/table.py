@@ -15,13 +15,15 @@ print("### Complexity (cells; DOFs = cells (p+1)^2)\n")
 print("| case | p | README requested DOFs (step 3) | frame N (PHiLiP conv.) cells / DOFs | thesis output_2 cells / DOFs "
       "| bamgquad cells / DOFs (N ratio, 1st run, runs) | lpcvt path cells / DOFs (N ratio) |")
 print("|---|---|---|---|---|---|---|")
-for c in cases + ["saddle"]:
+SPECIAL = {"saddle": "eq. 6.1 x 8", "band": "curved band"}
+for c in cases + list(SPECIAL):
     b = J("%s_bamg.json" % c)
     l = J("%s_lpcvt_q.json" % c)
     N = b["target_complexity"]
-    if c == "saddle":
-        print("| eq. 6.1 x 8, 16x16 (quadapt conv.) | - | - | %.0f | - | %d (%.3f, %.3f, %d) | %d (%.3f) |" % (
-            N, b["cells"], b["complexity_ratio"], b["calibration"]["first_ratio"], b["calibration"]["runs"],
+    if c in SPECIAL:
+        bg = "16x16" if c == "saddle" else "48x48"
+        print("| %s, %s (quadapt conv.) | - | - | %.0f | - | %d (%.3f, %.3f, %d) | %d (%.3f) |" % (
+            SPECIAL[c], bg, N, b["cells"], b["complexity_ratio"], b["calibration"]["first_ratio"], b["calibration"]["runs"],
             l["cells"], l["cells"] / N))
         continue
     p = p_of(c); w = (p + 1) ** 2
@@ -45,8 +47,8 @@ print("min angle in degrees; share = quad corners within 90 +- 10 degrees; SJ = 
       "are measured as 2 Vinv, their full-edge convention, so that a target edge has length 1).\n")
 print("| case | mesh | min angle | share 80-100 | min SJ | metric min angle | metric share 80-100 | metric min SJ | edges in range |")
 print("|---|---|---|---|---|---|---|---|---|")
-for c in cases + ["saddle"]:
-    if c != "saddle":
+for c in cases + list(SPECIAL):
+    if c not in SPECIAL:
         print("| %s | thesis output_2 (physical only) | %s | | | | |" % (c, row(J("%s_thesis.mq.json" % c), False)))
     for m, label in (("bamg", "bamgquad"), ("bamg_s", "bamgquad + quadsmooth"), ("lpcvt", "lpcvt + recombine + quadsmooth --frame")):
-        print("| %s | %s | %s |" % (c if c != "saddle" else "eq. 6.1 x 8", label, row(J("%s_%s.mq.json" % (c, m)))))
+        print("| %s | %s | %s |" % (SPECIAL.get(c, c), label, row(J("%s_%s.mq.json" % (c, m)))))

@@ -7,6 +7,10 @@ L-shape) and per cell $ElementData "Vinv" = V^-1, V = R(theta) diag(h1, h2), 9 c
   lpcvt_frame.py OUT.msh --n 8 --h1 0.05 --h2 0.05 --theta 0 [--box x0 x1 y0 y1] [--lshape]
   --kind symmetric: M = R diag(1/h1, 1/h2) R^T (symmetric, same M^T M).
   --kind saddle: M = eq. 6.1 sampled at cell centres (times --factor).
+  --kind band: a curved boundary layer: half-axes h1 along the circles |x| = r and h1 / s(d)
+    across, s(d) = 1 + (--stretch - 1) exp(-(d / --band-width)^2), d = |x| - --band-radius
+    (circles about the origin: on the unit square a quarter-circle band meeting two walls at right
+    angles; isotropic h1 far from it).
   --corrupt nan|singular|none: damage one cell's frame (bad-input tests): the cell with element
   tag --corrupt-cell K (default 1; tags are 1..cells in file order, rows from the bottom).
 """
@@ -23,8 +27,11 @@ def main():
     ap.add_argument("--theta", type=float, default=0.0)
     ap.add_argument("--box", type=float, nargs=4, default=[0, 1, 0, 1])
     ap.add_argument("--lshape", action="store_true")
-    ap.add_argument("--kind", choices=["constant", "symmetric", "saddle"], default="constant")
+    ap.add_argument("--kind", choices=["constant", "symmetric", "saddle", "band"], default="constant")
     ap.add_argument("--factor", type=float, default=1.0)
+    ap.add_argument("--stretch", type=float, default=10.0)
+    ap.add_argument("--band-radius", type=float, default=0.6)
+    ap.add_argument("--band-width", type=float, default=0.06)
     ap.add_argument("--philip", action="store_true", help="no $FrameConvention section (read as PHiLiP's sizes)")
     ap.add_argument("--corrupt", choices=["none", "nan", "singular", "nofield"], default="none")
     ap.add_argument("--corrupt-cell", type=int, default=1)
@@ -49,6 +56,14 @@ def main():
             # R diag(1/h1, 1/h2) R^T: same Riemannian metric, symmetric (like eq. 6.1)
             p1, p2 = 1 / a.h1, 1 / a.h2
             m = [c * c * p1 + s * s * p2, c * s * (p1 - p2), c * s * (p1 - p2), s * s * p1 + c * c * p2]
+        elif a.kind == "band":
+            x = sum(nodes[v][0] for v in q) / 4
+            y = sum(nodes[v][1] for v in q) / 4
+            d = math.hypot(x, y) - a.band_radius
+            h2 = a.h1 / (1 + (a.stretch - 1) * math.exp(-(d / a.band_width) ** 2))
+            t = math.atan2(y, x) + math.pi / 2
+            ct, st = math.cos(t), math.sin(t)
+            m = [ct / a.h1, st / a.h1, -st / h2, ct / h2]
         else:
             x = sum(nodes[v][0] for v in q) / 4
             y = sum(nodes[v][1] for v in q) / 4
