@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Issue #14's quality targets on two frames the default chain (lpcvt -> recombine -> quadsmooth
+# --frame, as the loop runs it) must keep meeting (docs/quad-quality.md):
+#  - an isotropic frame at 30° on the unit square: irregular interior vertices <= 3 %, because
+#    lpcvt turns the lattice of isotropic cells to the walls (--orientation boundary; with
+#    --orientation frame the lattice stays at 30° and 4.3 % of the vertices are irregular);
+#  - the curved band (stretch 10 on a quarter circle): metric corners within 90 +- 10° >= 0.6,
+#    edges in range >= 0.8, count within 5 %, valid.
+set -euo pipefail
+BIN=${QUADAPT_BIN_DIR:-}
+[ -n "$BIN" ] && PATH="$BIN:$PATH"
+for t in lpcvt recombine quadsmooth meshquality; do command -v $t >/dev/null || { echo "FAIL: $t not built (tools must be on PATH)" >&2; exit 1; }; done
+HERE=$(cd "$(dirname "$0")" && pwd)
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+export OMP_NUM_THREADS=1
+
+chain() {  # chain FRAME NAME [lpcvt options]
+  local f=$1 n=$2; shift 2
+  lpcvt -q "$f" -o "$T/$n-tri.msh" --seed 3 "$@"
+  recombine -q "$T/$n-tri.msh" -o "$T/$n-quad.msh"
+  quadsmooth -q "$T/$n-quad.msh" --frame "$f" -o "$T/$n-mesh.msh"
+  meshquality "$T/$n-mesh.msh" --frame "$f" > "$T/$n.mq.json"
+}
+
+python3 "$HERE/lpcvt_frame.py" "$T/iso30.msh" --n 16 --h1 0.0158113883 --h2 0.0158113883 --theta 0.5235987756
+chain "$T/iso30.msh" iso30
+chain "$T/iso30.msh" iso30-frame --orientation frame
+python3 "$HERE/lpcvt_frame.py" "$T/band.msh" --n 48 --kind band --h1 0.02
+chain "$T/band.msh" band
+
+python3 - "$T" <<'PY'
+import json, sys
+T = sys.argv[1]
+def J(n): return json.load(open("%s/%s.mq.json" % (T, n)))
+def req(c, m):
+    if not c: sys.exit("FAIL: " + m)
+a, b, c = J("iso30"), J("iso30-frame"), J("band")
+req(a["irregular_interior_share"] <= 0.03, "isotropic 30°: %.1f %% irregular (> 3 %%)" % (100 * a["irregular_interior_share"]))
+req(b["irregular_interior_share"] > a["irregular_interior_share"],
+    "isotropic 30°: --orientation frame no worse than boundary (%.3f vs %.3f): the test lost its point"
+    % (b["irregular_interior_share"], a["irregular_interior_share"]))
+m = c["metric"]
+req(m["quad_angle_share_80_100"] >= 0.6, "band: metric corners in 90+-10: %.2f < 0.6" % m["quad_angle_share_80_100"])
+req(m["edge_length"]["share_in_range"] >= 0.8, "band: edges in range %.2f < 0.8" % m["edge_length"]["share_in_range"])
+N = c["frame"]["continuous_complexity"]
+req(abs(c["cells"] / N - 1) <= 0.05, "band: %d cells for %.0f" % (c["cells"], N))
+req(c["physical"]["scaled_jacobian_min"] > 0, "band: invalid quad")
+print("ok: isotropic 30° irregular %.1f %% (frame's angle: %.1f %%); band corners %.2f, edges %.2f, %d cells for %.0f"
+      % (100 * a["irregular_interior_share"], 100 * b["irregular_interior_share"], m["quad_angle_share_80_100"],
+         m["edge_length"]["share_in_range"], c["cells"], N))
+PY
