@@ -31,7 +31,10 @@ int main(int argc, char** argv) {
   LpcvtOptions& opt = job.lpcvt;
   opt = analytic_mode ? LpcvtOptions::for_analytic() : LpcvtOptions::for_frame();
   job.metric_cells = !analytic_mode;
-  if (!analytic_mode) job.gradation = 2.0;  // docs/lpcvt.md "Gradation": frames' default
+  if (!analytic_mode) {
+    job.gradation = 2.0;  // docs/lpcvt.md "Gradation": frames' default
+    job.smooth = 4;       // docs/lpcvt.md "Smoothing": frames' default
+  }
   job.free_orientation = !analytic_mode;    // docs/lpcvt.md "Orientation": frames' default
   std::string in, out, analytic, voronoi_out, init, convention = "auto", frame_out, cells_kind, geometry;
   int grid = 16, initial = -1;
@@ -67,7 +70,7 @@ int main(int argc, char** argv) {
   app.add_option("--complexity", job.complexity, "Target DOFs: the frame rescaled to complexity/(degree+1)^2 cells")
       ->check(PositiveValue);
   app.add_option("--degree", job.degree, "DG degree P for --complexity (cells = complexity/(P+1)^2)")->check(CLI::Range(kMinDegree, kMaxDegree));
-  app.add_option("--smooth", job.smooth, "Log-Euclidean smoothing of the metric M^T M across background cells: passes (0 = none)")
+  app.add_option("--smooth", job.smooth, "Log-Euclidean smoothing of the metric M^T M across background cells: passes (0 = none; frames' default 4, --analytic's 0)")
       ->capture_default_str()->check(CLI::Range(0, 1000));
   app.add_option("--gradation", job.gradation, "Anisotropic size gradation: growth per unit metric length between "
                  "neighbouring background cells (0 = none; frames' default 2, --analytic's 0); the point count is kept");
