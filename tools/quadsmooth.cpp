@@ -58,6 +58,11 @@ int main(int argc, char** argv) {
                  "Stop when no node moves more than this fraction of its mean edge length (default: 0 "
                  "for angle, 1e-3 for shape)")
       ->check(NonNegativeValue);
+  std::string corner_metric = "node";
+  app.add_option("--corner-metric", corner_metric,
+                 "Shape fit: the metric of each corner, at its own node (node) or the cell's at its centroid "
+                 "(cell: all corners of a quad in one metric, as meshquality --frame measures it)")
+      ->capture_default_str()->check(CLI::IsMember({"node", "cell"}));
   app.add_option("--frame", frame_path,
                  "Frame file (background mesh with the cell field Vinv): smooth in its metric space")
       ->check(CLI::ExistingFile);
@@ -71,6 +76,8 @@ int main(int argc, char** argv) {
     if (sweeps >= 0) opt.sweeps = shape.sweeps = sweeps;
     if (tolerance >= 0) opt.tolerance = shape.tolerance = tolerance;
     shape.max_halvings = opt.max_halvings;
+    shape.cell_metric = corner_metric == "cell";
+    if (method == "shape") tool.option("corner_metric", corner_metric);
     tool.option("method", method);
     tool.option("sweeps", method == "shape" ? shape.sweeps : opt.sweeps);
     tool.option("halvings", opt.max_halvings);

@@ -224,7 +224,7 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
   const double lo = opt.size_min * opt.target_edge, hi = opt.size_max * opt.target_edge;
   // ideal corner edges (next, previous), counter-clockwise: a square's and an equilateral triangle's
   const Vec2 quad_e1(0, 1), tri_e1(0.5, std::sqrt(3.0) / 2);
-  std::vector<Mat2> node_T(nn, Mat2::Identity());
+  std::vector<Mat2> node_T(nn, Mat2::Identity()), cell_T(opt.cell_metric ? m.num_cells() : 0, Mat2::Identity());
   // nodes to visit in a sweep: all in the first, then those with a cell-mate (or themselves)
   // that moved more than the tolerance in the sweep before (the others' fits are unchanged)
   std::vector<char> active(nn, 1), next(nn, 0);
@@ -272,7 +272,7 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
         const Vec2& xj = m.nodes[cell.v[j]];
         const Vec2& xn = m.nodes[cell.v[(j + 1) % n]];
         const Vec2& xp = m.nodes[cell.v[(j + n - 1) % n]];
-        const Mat2& Tj = node_T[cell.v[j]];
+        const Mat2& Tj = opt.cell_metric ? cell_T[c] : node_T[cell.v[j]];
         const Vec2 a0 = Tj * (xn - xj), a1 = Tj * (xp - xj);
         Vec2 z(0.5 * (a0.x() + e1.x() * a1.x() + e1.y() * a1.y()), 0.5 * (a0.y() + e1.x() * a1.y() - e1.y() * a1.x()));
         const double r = z.norm();
@@ -313,6 +313,10 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
 #pragma omp parallel for schedule(static)
       for (int v = 0; v < nn; ++v)
         if (!topo.node_cells[v].empty()) node_T[v] = metric(m.nodes[v]);
+      if (opt.cell_metric) {
+#pragma omp parallel for schedule(static)
+        for (int c = 0; c < m.num_cells(); ++c) cell_T[c] = metric(cell_centroid(m, c));
+      }
     }
     for (const std::vector<int>& nodes : colours) {
       const int nc = static_cast<int>(nodes.size());

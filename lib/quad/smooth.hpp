@@ -101,6 +101,9 @@ struct ShapeSmoothOptions {
   int max_halvings = 4;       ///< a rejected move is halved at most this many times
   double min_sine = 0.5;      ///< a move may lower the local minimum metric corner sine only while it stays above this
   double min_sine_physical = 0.05; ///< the same in physical space
+  /// the metric of a corner: at its own node (false), or the cell's at its centroid (true; all
+  /// corners of a cell in one metric, as meshquality --frame measures a cell)
+  bool cell_metric = false;
 };
 
 /// Smooths m in place (conforming quad, triangle or mixed mesh, cells counter-clockwise) by the

@@ -255,67 +255,75 @@ TEST_CASE("shape_smooth: the split of a random Delaunay triangulation stays vali
   CHECK(total_area(m) == doctest::Approx(total_area(before)).epsilon(1e-12));
 }
 
-TEST_CASE("shape_smooth: one node's step minimises the corner fit with every corner in its own node's metric") {
+TEST_CASE("shape_smooth: one node's step minimises the corner fit with every corner in its own node's (or its cell's) metric") {
   // 2 x 2 quads, one interior node (perturbed), a metric that varies in space. The documented
   // step: every corner the node takes part in is fitted (z clamped) in the metric at the
   // corner's own node, and the node goes to the minimiser of the sum of the squared residuals.
   // Recomputed here independently; fitting every corner in the moving node's metric (an energy
-  // that changes with the node moved) gives a different point and fails.
-  Mesh m = make_structured_quads(2, 2);
-  int centre = -1;
-  const auto fixed = boundary_node_flags(m);
-  for (int v = 0; v < m.num_nodes(); ++v)
-    if (!fixed[v]) centre = v;
-  REQUIRE(centre >= 0);
-  m.nodes[centre] += Vec2(0.07, -0.05);
-  auto metric = [](const Vec2& x) {
-    Mat2 T;
-    T << 2.0 + 3 * x.x(), 0.4 * x.y(), -0.3 * x.x(), 1.5 + 2 * x.y() * x.y();
-    return T;
-  };
-  ShapeSmoothOptions opt;
-  opt.sweeps = 1;
-  opt.target_edge = 1.0;
-  opt.size_min = 0.9;
-  opt.size_max = 1.1;
-  // expected: normal equations of sum |T_j (x - x_ref) - b|^2
-  Mat2 A = Mat2::Zero();
-  Vec2 rhs = Vec2::Zero();
-  const Vec2 xi = m.nodes[centre];
-  for (const Cell& c : m.cells) {
-    int k = -1;
-    for (int q = 0; q < 4; ++q)
-      if (c.v[q] == centre) k = q;
-    if (k < 0) continue;
-    for (int j : {k, (k + 3) % 4, (k + 1) % 4}) {
-      const Vec2 xj = m.nodes[c.v[j]], xn = m.nodes[c.v[(j + 1) % 4]], xp = m.nodes[c.v[(j + 3) % 4]];
-      const Mat2 T = metric(xj);
-      const Vec2 a0 = T * (xn - xj), a1 = T * (xp - xj);
-      // z = (a0 + conj(i) a1) / 2, conj(i) a1 = (a1.y, -a1.x)
-      Vec2 z = 0.5 * Vec2(a0.x() + a1.y(), a0.y() - a1.x());
-      z *= std::clamp(z.norm(), 0.9, 1.1) / z.norm();
-      const Vec2 b0 = z, b1(-z.y(), z.x());  // z, i z
-      const Mat2 G = T.transpose() * T;
-      auto add = [&](const Vec2& ref, const Vec2& b) {
-        A += G;
-        rhs += G * ref + T.transpose() * b;
-      };
-      if (j == k) {
-        add(xn, -b0);
-        add(xp, -b1);
-      } else if (j == (k + 3) % 4) {
-        add(xj, b0);
-      } else {
-        add(xj, b1);
+  // that changes with the node moved) gives a different point and fails. With cell_metric every
+  // corner is fitted in the metric at its cell's centroid instead (--corner-metric cell).
+  Vec2 expected_by[2];
+  for (const bool cell_metric : {false, true}) {
+    CAPTURE(cell_metric);
+    Mesh m = make_structured_quads(2, 2);
+    int centre = -1;
+    const auto fixed = boundary_node_flags(m);
+    for (int v = 0; v < m.num_nodes(); ++v)
+      if (!fixed[v]) centre = v;
+    REQUIRE(centre >= 0);
+    m.nodes[centre] += Vec2(0.07, -0.05);
+    auto metric = [](const Vec2& x) {
+      Mat2 T;
+      T << 2.0 + 3 * x.x(), 0.4 * x.y(), -0.3 * x.x(), 1.5 + 2 * x.y() * x.y();
+      return T;
+    };
+    ShapeSmoothOptions opt;
+    opt.sweeps = 1;
+    opt.target_edge = 1.0;
+    opt.size_min = 0.9;
+    opt.size_max = 1.1;
+    opt.cell_metric = cell_metric;
+    // expected: normal equations of sum |T_j (x - x_ref) - b|^2
+    Mat2 A = Mat2::Zero();
+    Vec2 rhs = Vec2::Zero();
+    const Vec2 xi = m.nodes[centre];
+    for (const Cell& c : m.cells) {
+      int k = -1;
+      for (int q = 0; q < 4; ++q)
+        if (c.v[q] == centre) k = q;
+      if (k < 0) continue;
+      for (int j : {k, (k + 3) % 4, (k + 1) % 4}) {
+        const Vec2 xj = m.nodes[c.v[j]], xn = m.nodes[c.v[(j + 1) % 4]], xp = m.nodes[c.v[(j + 3) % 4]];
+        const Mat2 T = cell_metric ? metric(cell_centroid(m, static_cast<int>(&c - m.cells.data()))) : metric(xj);
+        const Vec2 a0 = T * (xn - xj), a1 = T * (xp - xj);
+        // z = (a0 + conj(i) a1) / 2, conj(i) a1 = (a1.y, -a1.x)
+        Vec2 z = 0.5 * Vec2(a0.x() + a1.y(), a0.y() - a1.x());
+        z *= std::clamp(z.norm(), 0.9, 1.1) / z.norm();
+        const Vec2 b0 = z, b1(-z.y(), z.x());  // z, i z
+        const Mat2 G = T.transpose() * T;
+        auto add = [&](const Vec2& ref, const Vec2& b) {
+          A += G;
+          rhs += G * ref + T.transpose() * b;
+        };
+        if (j == k) {
+          add(xn, -b0);
+          add(xp, -b1);
+        } else if (j == (k + 3) % 4) {
+          add(xj, b0);
+        } else {
+          add(xj, b1);
+        }
       }
     }
+    const Vec2 expected = A.inverse() * rhs;
+    const auto st = shape_smooth(m, opt, metric);
+    REQUIRE(st.moves_full == 1);
+    MESSAGE("moved " << (m.nodes[centre] - xi).norm() << ", off the minimiser by " << (m.nodes[centre] - expected).norm());
+    CHECK((m.nodes[centre] - expected).norm() < 1e-12);
+    CHECK((expected - xi).norm() > 1e-3);
+    expected_by[cell_metric] = expected;
   }
-  const Vec2 expected = A.inverse() * rhs;
-  const auto st = shape_smooth(m, opt, metric);
-  REQUIRE(st.moves_full == 1);
-  MESSAGE("moved " << (m.nodes[centre] - xi).norm() << ", off the minimiser by " << (m.nodes[centre] - expected).norm());
-  CHECK((m.nodes[centre] - expected).norm() < 1e-12);
-  CHECK((expected - xi).norm() > 1e-3);
+  CHECK((expected_by[0] - expected_by[1]).norm() > 1e-3);  // the two metrics give different steps
 }
 
 TEST_CASE("shape_smooth: colours of >= 2048 nodes move in parallel, the same mesh at 1 and 2 threads") {
