@@ -26,23 +26,23 @@ for c in $cases; do
   for m in bamg bamg_s lpcvt; do meshquality "$OUT/${c}_$m.msh" --frame "$F" > "$OUT/${c}_$m.mq.json"; done
   meshquality "$FIX/output_${c}_2.msh" > "$OUT/${c}_thesis.mq.json"
 done
+# both paths on OUT/NAME_frame.msh (quadapt convention), as above
+own_frame() {
+  local n=$1 F="$OUT/$1_frame.msh"
+  bamgquad -q "$F" -o "$OUT/${n}_bamg.msh"
+  quadsmooth -q "$OUT/${n}_bamg.msh" -o "$OUT/${n}_bamg_s.msh"
+  lpcvt -q "$F" -o "$OUT/${n}_lpcvt_tri.msh"
+  recombine -q "$OUT/${n}_lpcvt_tri.msh" -o "$OUT/${n}_lpcvt_q.msh"
+  quadsmooth -q "$OUT/${n}_lpcvt_q.msh" --frame "$F" -o "$OUT/${n}_lpcvt.msh"
+  for m in bamg bamg_s lpcvt; do meshquality "$OUT/${n}_$m.msh" --frame "$F" > "$OUT/${n}_$m.mq.json"; done
+}
 # eq. 6.1 saddle, sampled at the centres of a 16x16 background on [-1.3, 1.3]^2, times 8
 python3 "$SRC/tests/cli/lpcvt_frame.py" "$OUT/saddle_frame.msh" --n 16 --kind saddle --box -1.3 1.3 -1.3 1.3 --factor 8
-bamgquad -q "$OUT/saddle_frame.msh" -o "$OUT/saddle_bamg.msh"
-quadsmooth -q "$OUT/saddle_bamg.msh" -o "$OUT/saddle_bamg_s.msh"
-lpcvt -q "$OUT/saddle_frame.msh" -o "$OUT/saddle_lpcvt_tri.msh"
-recombine -q "$OUT/saddle_lpcvt_tri.msh" -o "$OUT/saddle_lpcvt_q.msh"
-quadsmooth -q "$OUT/saddle_lpcvt_q.msh" --frame "$OUT/saddle_frame.msh" -o "$OUT/saddle_lpcvt.msh"
-for m in bamg bamg_s lpcvt; do meshquality "$OUT/saddle_$m.msh" --frame "$OUT/saddle_frame.msh" > "$OUT/saddle_$m.mq.json"; done
+own_frame saddle
 # a curved band (issue #14, item 2): quarter-circle boundary layer about the origin, stretch 10 at
 # r = 0.6, width 0.06, isotropic h = 0.02 elsewhere, sampled on a 48x48 background (quadapt convention)
 python3 "$SRC/tests/cli/lpcvt_frame.py" "$OUT/band_frame.msh" --n 48 --kind band --h1 0.02 --stretch 10 --band-radius 0.6 --band-width 0.06
-bamgquad -q "$OUT/band_frame.msh" -o "$OUT/band_bamg.msh"
-quadsmooth -q "$OUT/band_bamg.msh" -o "$OUT/band_bamg_s.msh"
-lpcvt -q "$OUT/band_frame.msh" -o "$OUT/band_lpcvt_tri.msh"
-recombine -q "$OUT/band_lpcvt_tri.msh" -o "$OUT/band_lpcvt_q.msh"
-quadsmooth -q "$OUT/band_lpcvt_q.msh" --frame "$OUT/band_frame.msh" -o "$OUT/band_lpcvt.msh"
-for m in bamg bamg_s lpcvt; do meshquality "$OUT/band_$m.msh" --frame "$OUT/band_frame.msh" > "$OUT/band_$m.mq.json"; done
+own_frame band
 # pictures: one boundary-layer case, the three meshes
 if command -v rsvg-convert >/dev/null; then
   c=bl15_fb_p2
