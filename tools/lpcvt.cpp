@@ -27,15 +27,8 @@ int main(int argc, char** argv) {
             "(\"converged\": false; --strict: exit code 1). See docs/lpcvt.md.");
   bool analytic_mode = false;  // the defaults depend on the mode (LpcvtOptions::for_frame / for_analytic)
   for (int i = 1; i < argc; ++i) analytic_mode |= std::strncmp(argv[i], "--analytic", 10) == 0;
-  LpcvtJob job;
+  LpcvtJob job = analytic_mode ? LpcvtJob::for_analytic() : LpcvtJob::for_frame();
   LpcvtOptions& opt = job.lpcvt;
-  opt = analytic_mode ? LpcvtOptions::for_analytic() : LpcvtOptions::for_frame();
-  job.metric_cells = !analytic_mode;
-  if (!analytic_mode) {
-    job.gradation = 2.0;  // docs/lpcvt.md "Gradation": frames' default
-    job.smooth = 4;       // docs/lpcvt.md "Smoothing": frames' default
-  }
-  job.free_orientation = !analytic_mode;    // docs/lpcvt.md "Orientation": frames' default
   std::string in, out, analytic, voronoi_out, init, convention = "auto", frame_out, cells_kind, geometry;
   int grid = 16, initial = -1;
   bool sampled = false, strict = false, no_exact = false;
@@ -116,6 +109,8 @@ int main(int argc, char** argv) {
     if (!voronoi_out.empty()) tool.output(voronoi_out);
     if (!frame_out.empty()) tool.output(frame_out);
     opt.exact_count = !no_exact;
+    if (analytic_mode && app.count("--orientation") && orientation == "boundary")
+      throw InputError("", "--orientation boundary needs a frame: the --analytic metric states its own orientation");
     job.free_orientation = orientation == "boundary";
     opt.set_init(init, analytic_mode);
     if (initial >= 0) opt.initial_points = initial;

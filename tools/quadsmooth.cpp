@@ -76,6 +76,8 @@ int main(int argc, char** argv) {
     if (sweeps >= 0) opt.sweeps = shape.sweeps = sweeps;
     if (tolerance >= 0) opt.tolerance = shape.tolerance = tolerance;
     shape.max_halvings = opt.max_halvings;
+    if (method != "shape" && tool.app().count("--corner-metric"))
+      throw InputError(in, "--corner-metric applies to the shape fit only (--method shape with --frame)");
     shape.cell_metric = corner_metric == "cell";
     if (method == "shape") tool.option("corner_metric", corner_metric);
     tool.option("method", method);

@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     const Frame frame = frame_from_mesh(make_frame_mesh(shape, sizes), "frame");
 
     // 3. Mesh: L_p-CVT triangles with the lpcvt tool's defaults, then Blossom-Quad + split.
-    lpcvt::LpcvtJob job;  // LpcvtOptions::for_frame()
+    lpcvt::LpcvtJob job = lpcvt::LpcvtJob::for_frame();
     nlohmann::json report;
     const lpcvt::Background bg = lpcvt::frame_background(frame, job, report);
     const lpcvt::LpcvtResult tri = lpcvt::mesh_background(bg, job, report);

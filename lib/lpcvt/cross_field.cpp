@@ -64,7 +64,7 @@ CrossFieldReport align_free_orientation(Background& bg, const CrossFieldOptions&
   Eigen::VectorXd bre = Eigen::VectorXd::Zero(n), bim = Eigen::VectorXd::Zero(n);
   std::vector<double> diag(n, 0.0);
   for (int c = 0; c < n; ++c) {
-    const double a = o.kappa * (1 - w[c]);
+    const double a = o.kappa * std::pow(1 - w[c], 4);
     if (a > 0) {
       const Cplx f = a * cross(lattice_angle(without_reflection(M[c])));
       diag[c] += a;
@@ -92,7 +92,9 @@ CrossFieldReport align_free_orientation(Background& bg, const CrossFieldOptions&
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(trip.begin(), trip.end());
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
-  if (ldlt.info() != Eigen::Success) throw NumericalError("cross field: the system is singular (a background component without a wall?)");
+  // every face-connected component has a wall face, so A is positive definite; a failed
+  // factorisation means non-finite input
+  if (ldlt.info() != Eigen::Success) throw NumericalError("cross field: the factorisation failed (non-finite frame?)");
   const Eigen::VectorXd ure = ldlt.solve(bre), uim = ldlt.solve(bim);
 
   double sum = 0;
@@ -104,7 +106,7 @@ CrossFieldReport align_free_orientation(Background& bg, const CrossFieldOptions&
     if (d == 0) continue;
     const double cs = std::cos(d), sn = std::sin(d);
     Mat2 L;
-    L << cs, sn, -sn, cs;  // R(-d): the lattice axis M^-1 e_1 turns by +d
+    L << cs, sn, -sn, cs;  // R(-d): the lattice axis M^-1 e_1 turns by +d (exactly when M is conformal)
     M[c] = L * Mo;
     ++rep.rotated_cells;
     sum += std::abs(d);

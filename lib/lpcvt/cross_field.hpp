@@ -18,15 +18,18 @@
 // (s0 = 1.05, s1 = 1.5); the frame's lattice angle theta_c = arg(M_c^-1 e_1) and its 4-fold
 // representation f_c = exp(4 i theta_c) (a cross: theta and theta + 90° are the same lattice).
 // The cross field u (one complex number per cell) minimises
-//     sum_{faces (i,j)} |u_i - u_j|^2 + sum_c kappa (1 - w_c) |u_c - f_c|^2
+//     sum_{faces (i,j)} |u_i - u_j|^2 + sum_c kappa (1 - w_c)^4 |u_c - f_c|^2
 //       + sum_{boundary faces e of c} |u_c - exp(4 i t_e)|^2,
 // t_e the angle of the wall edge e, kappa = 100: a graph Laplacian (face neighbours) with the
-// anisotropic cells and the walls as soft constraints; the normal equations are one SPD sparse
+// anisotropic cells and the walls as soft constraints (the fourth power leaves the nearly free
+// cells unpinned: with kappa (1 - w) a cell of stretch 1.1 was held at its own angle, and the
+// freedom then acted twice — in the pin and in the turn below); the normal equations are one SPD sparse
 // system for the real and imaginary parts (Eigen's SimplicialLDLT). With phi_c = arg(u_c) / 4
 // and d_c = phi_c - theta_c wrapped to [-45°, 45°), the cell's frame becomes
 //     M_c <- R(-w_c d_c) M_c,
-// so an isotropic cell's lattice is at phi_c and an anisotropic one (w_c = 0) is untouched,
-// bit for bit. On a constant isotropic frame of a polygon with axis-parallel walls the cross
+// so an isotropic cell's lattice is at phi_c, a partly free one turns by the fraction w_c of
+// the way (a rotation in the metric: its physical cells become slightly sheared parallelograms,
+// the more the larger its stretch), and an anisotropic one (w_c = 0) is untouched, bit for bit. On a constant isotropic frame of a polygon with axis-parallel walls the cross
 // field is the axes (u = 1), whatever the frame's angle. A frame without a free cell (every
 // s_c >= s1) is returned unchanged without a solve.
 #include "lpcvt/background.hpp"
@@ -44,7 +47,7 @@ struct CrossFieldReport {
 struct CrossFieldOptions {
   double free_below = 1.05;   ///< s0: fully free at or below this stretch
   double fixed_above = 1.5;   ///< s1: the frame's orientation at or above this stretch
-  double kappa = 100;         ///< weight of the anisotropic cells' own orientation
+  double kappa = 100;         ///< weight of the anisotropic cells' own orientation (times (1 - w)^4)
 };
 
 /// The freedom w(s) of a cell of stretch s (above); s >= 1.

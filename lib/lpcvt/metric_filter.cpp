@@ -6,6 +6,7 @@
 #include <deque>
 
 #include "core/error.hpp"
+#include "frame/frame.hpp"
 #include "mesh/topology.hpp"
 
 namespace quadapt::lpcvt {
@@ -30,11 +31,21 @@ std::vector<std::vector<int>> neighbours(const Background& bg) {
 }
 
 /// The frame M = diag(sqrt(mu)) E^T of the Riemannian metric A (eigenpairs mu, E); nearly
-/// isotropic: the shape and orientation of M0 at A's size.
+/// isotropic A (stretch < 1.1): the isotropic frame of A's size turned like M0, (mu_0 mu_1)^(1/4) Q0
+/// with Q0 the rotation nearest to M0 (its polar factor, reflection removed) — the eigenvectors
+/// of such an A mean nothing, but the L_p energy sees the frame's orientation. (Keeping M0's whole
+/// shape there, as before, kept a 5:1 frame where two crossing 5:1 frames average to a circle.)
 Mat2 frame_of(const Sym& A, const Mat2& M0) {
   Eigen::SelfAdjointEigenSolver<Sym> es(A);
   const Eigen::Vector2d mu = es.eigenvalues();
-  if (mu[1] / mu[0] < 1.1 * 1.1) return M0 * (std::pow(mu[0] * mu[1], 0.25) / std::sqrt(std::abs(M0.determinant())));
+  if (mu[1] / mu[0] < 1.1 * 1.1) {
+    const Mat2 Mo = without_reflection(M0);
+    // nearest rotation of [[a, b], [c, d]] (det > 0): R(-phi) with phi = atan2(c - b, a + d)
+    const double phi = std::atan2(Mo(1, 0) - Mo(0, 1), Mo(0, 0) + Mo(1, 1));
+    Mat2 Q;
+    Q << std::cos(phi), -std::sin(phi), std::sin(phi), std::cos(phi);
+    return std::pow(mu[0] * mu[1], 0.25) * Q;
+  }
   Mat2 M = mu.array().sqrt().matrix().asDiagonal() * es.eigenvectors().transpose();
   // rows in the order and with the signs of M0's (the same |M u|_p either way; an unchanged
   // frame stays identical)
@@ -84,10 +95,10 @@ FilterReport smooth_metric(Background& bg, int passes) {
   const double area = bg.metric_area();
   r.max_ratio_before = max_neighbour_size_ratio(bg);
   std::vector<Mat2> M0(n), M(n);
-  std::vector<Sym> L(n), L2(n);
+  std::vector<Sym> L(n), L2(n), L0(n);
   for (int c = 0; c < n; ++c) {
     M0[c] = bg.mesh_cell_metric(c);
-    L[c] = sym_log(M0[c].transpose() * M0[c]);
+    L[c] = L0[c] = sym_log(M0[c].transpose() * M0[c]);
   }
   for (int k = 0; k < passes; ++k) {
     for (int c = 0; c < n; ++c) {
@@ -98,6 +109,12 @@ FilterReport smooth_metric(Background& bg, int passes) {
     L.swap(L2);
   }
   for (int c = 0; c < n; ++c) {
+    // a cell whose neighbourhood has its own metric (a constant frame) keeps its frame bit for bit
+    // (the eigen rebuild would change it by rounding, which the minimisation amplifies)
+    if ((L[c] - L0[c]).norm() <= 1e-12 * (1 + L0[c].norm())) {
+      M[c] = M0[c];
+      continue;
+    }
     Eigen::SelfAdjointEigenSolver<Sym> es(L[c]);
     const Sym A = es.eigenvectors() * es.eigenvalues().array().exp().matrix().asDiagonal() * es.eigenvectors().transpose();
     M[c] = frame_of(A, M0[c]);

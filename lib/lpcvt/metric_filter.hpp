@@ -12,8 +12,9 @@
 // wrap-around as when averaging theta, no swelling of the determinant as the arithmetic mean).
 // The frame is rebuilt as M = diag(sqrt(mu_1), sqrt(mu_2)) [e_1 e_2]^T from the eigenpairs of
 // 𝓜; where the smoothed metric is nearly isotropic (mu_max / mu_min < 1.1^2) the eigenvectors
-// mean nothing and the cell keeps its own frame's orientation and shape at the new size
-// (the L_p energy, unlike 𝓜, sees the frame's orientation even when h1 = h2).
+// mean nothing and the cell gets the isotropic frame of that size turned like its own frame
+// (the rotation nearest to M; the L_p energy, unlike 𝓜, sees the frame's orientation even when
+// h1 = h2). A cell whose smoothed log 𝓜 equals its own (a constant frame) keeps M bit for bit.
 //
 // Gradation (Alauzet's anisotropic size gradation, "Size gradation control of anisotropic
 // meshes", 2010). Between face-neighbouring cells c, n with centroids g_c, g_n,

@@ -25,6 +25,26 @@ LpcvtOptions LpcvtOptions::for_frame() {
   return o;
 }
 
+LpcvtJob LpcvtJob::for_frame() {
+  LpcvtJob j;
+  j.lpcvt = LpcvtOptions::for_frame();
+  j.metric_cells = true;
+  j.smooth = 4;                // docs/lpcvt.md, Method 9 "Why smoothing 4 by default"
+  j.gradation = 2.0;           // docs/lpcvt.md, Method 9 "Why gradation 2 by default"
+  j.free_orientation = true;   // docs/lpcvt.md, Method 10
+  return j;
+}
+
+LpcvtJob LpcvtJob::for_analytic() {
+  LpcvtJob j;
+  j.lpcvt = LpcvtOptions::for_analytic();
+  j.metric_cells = false;
+  j.smooth = 0;
+  j.gradation = 0;
+  j.free_orientation = false;
+  return j;
+}
+
 LpcvtOptions LpcvtOptions::for_analytic() {
   LpcvtOptions o;
   o.lbfgs.gamma = 0;

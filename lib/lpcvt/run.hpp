@@ -29,6 +29,13 @@ struct LpcvtJob {
   double cells_per_triangle = 2;  ///< final cells per triangle recombine gives: the point count is sized by 2/R
   bool metric_cells = true;       ///< Voronoi cells in the metric (Background::set_metric_cells); false: the thesis's
   double cell_anisotropy = 0.9;   ///< with metric_cells: the cells' anisotropy is the metric's to this power (0..1)
+
+  /// The lpcvt tool's defaults for a frame (docs/lpcvt.md): LpcvtOptions::for_frame(), metric
+  /// cells, --smooth 4, --gradation 2, --orientation boundary.
+  static LpcvtJob for_frame();
+  /// The defaults of --analytic (the thesis's validation): LpcvtOptions::for_analytic(),
+  /// Euclidean cells, no filters, the frame's own orientation.
+  static LpcvtJob for_analytic();
 };
 
 /// The background of a frame: M_eff = scale * M, then --smooth/--gradation/--orientation, the complexity

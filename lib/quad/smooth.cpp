@@ -309,7 +309,7 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
   };
   for (int sweep = 0; sweep < opt.sweeps; ++sweep) {
     bool any = false;
-    if (metric) {  // each corner is fitted in the metric at its own node (frozen for the sweep)
+    if (metric) {  // each corner is fitted in the metric at its own node, or its cell's centroid (frozen for the sweep)
 #pragma omp parallel for schedule(static)
       for (int v = 0; v < nn; ++v)
         if (!topo.node_cells[v].empty()) node_T[v] = metric(m.nodes[v]);

@@ -67,7 +67,7 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt = {}, const NodeMetri
 /// Corner-similarity smoothing in the metric (issue #14; the default of quadsmooth --frame).
 ///
 /// The target of a quad is the unit square of the metric, of a triangle the equilateral one.
-/// Every corner is fitted in the metric at its own node: for a corner at x_j with next node x_n
+/// Every corner is fitted in the metric at its own node (cell_metric: at its cell's centroid): for a corner at x_j with next node x_n
 /// and previous node x_p (counter-clockwise), T_j = metric(x_j) (evaluated once per sweep),
 /// a0 = T_j (x_n - x_j), a1 = T_j (x_p - x_j), the best similarity z (a complex number:
 /// rotation and scale) with z e0 ~ a0, z e1 ~ a1 (e0 = 1; e1 = i for a quad corner, e^{i pi/3}
@@ -102,7 +102,9 @@ struct ShapeSmoothOptions {
   double min_sine = 0.5;      ///< a move may lower the local minimum metric corner sine only while it stays above this
   double min_sine_physical = 0.05; ///< the same in physical space
   /// the metric of a corner: at its own node (false), or the cell's at its centroid (true; all
-  /// corners of a cell in one metric, as meshquality --frame measures a cell)
+  /// corners of a cell in one metric, as meshquality --frame measures a cell). The guard above
+  /// stays in the moving node's metric either way. Not the default: it raises the per-cell
+  /// metric figures on rough frames but costs the adaptive loops accuracy (docs/quadsmooth.md).
   bool cell_metric = false;
 };
 

@@ -51,6 +51,9 @@ keep = ["points", "boundary_points", "triangles", "cycles", "energy", "converged
 json.dump({k: r[k] for k in keep}, open(sys.argv[2], "w"), indent=1)
 # (the iteration count moves with rounding-level changes of the code; bounded, not golden)
 assert r["converged"] and r["cycles"] <= 8 and r["iterations"] <= 1000, (r["cycles"], r["iterations"])
+# --analytic's defaults (LpcvtJob::for_analytic): no metric filters, the metric's own orientation
+assert "smoothing" not in r and "gradation" not in r, r.keys()
+assert r["orientation"] == {"mode": "frame"}, r["orientation"]
 PY
 $PY "$S/tests/cli/golden_compare.py" "$T/saddle-figures.json" "$S/tests/golden/lpcvt/saddle16.json" --rtol 1e-6
 $PY - "$T/saddle-vor.json" <<'PY'

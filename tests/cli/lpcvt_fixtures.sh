@@ -36,6 +36,8 @@ assert len(r["cycle_history"]) <= 8, len(r["cycle_history"])
 # anisotropic gradation alone may raise the mean-size ratio a little: 2.19 -> 2.41 on ss15_fb_p1);
 # without the defaults there is no "smoothing" or "gradation" key at all
 s, g = r["smoothing"], r["gradation"]
+# and the lattice of the nearly isotropic cells turned to the walls (--orientation boundary)
+assert r["orientation"]["mode"] == "boundary" and r["orientation"]["free_cells"] > 0, r["orientation"]
 assert s["passes"] == 4 and s["cells_changed"] > 0, s
 assert g["growth"] == 2.0 and g["cells_changed"] > 0, g
 raw, final = s["max_neighbour_size_ratio_before"], g["max_neighbour_size_ratio_after"]

@@ -96,4 +96,13 @@ assert all(x.startswith("lpcvt: ") for x in w) and len(w) == len(set(w)), w
 assert rows[1]["warnings"] == "", rows[1]
 print("messages: convergence.csv warnings:", rows[0]["warnings"])
 PY
+# --- options that would be silently ignored are refused (exit 2, the reason named)
+rc=0; msg=$(lpcvt --analytic saddle --orientation boundary -o "$T/o.msh" 2>&1) || rc=$?
+[ $rc -eq 2 ] && echo "$msg" | grep -q -- "--orientation boundary needs a frame" || fail "lpcvt --analytic --orientation boundary: exit $rc: $msg"
+[ ! -e "$T/o.msh" ] || fail "lpcvt wrote an output after refusing its options"
+python3 "$S/tests/cli/lpcvt_frame.py" "$T/f.msh" --n 4
+lpcvt -q "$T/f.msh" -o "$T/t.msh" && recombine -q "$T/t.msh" -o "$T/q.msh"
+rc=0; msg=$(quadsmooth "$T/q.msh" -o "$T/s.msh" --corner-metric cell 2>&1) || rc=$?
+[ $rc -eq 2 ] && echo "$msg" | grep -q -- "--corner-metric applies to the shape fit only" || fail "quadsmooth --corner-metric without --frame: exit $rc: $msg"
+
 echo "messages: ok"
