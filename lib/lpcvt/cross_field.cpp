@@ -50,10 +50,11 @@ CrossFieldReport align_free_orientation(Background& bg, const CrossFieldOptions&
   const Mesh& mesh = bg.mesh();
   const int n = mesh.num_cells();
   std::vector<Mat2> M(n);
-  std::vector<double> w(n);
+  std::vector<double> w(n), theta(n);  // freedom, lattice angle (reflection removed)
   for (int c = 0; c < n; ++c) {
     M[c] = bg.mesh_cell_metric(c);
     w[c] = orientation_freedom(stretch_of(M[c]), o);
+    theta[c] = lattice_angle(without_reflection(M[c]));
     if (w[c] > 0) ++rep.free_cells;
   }
   if (rep.free_cells == 0) return rep;
@@ -66,7 +67,7 @@ CrossFieldReport align_free_orientation(Background& bg, const CrossFieldOptions&
   for (int c = 0; c < n; ++c) {
     const double a = o.kappa * std::pow(1 - w[c], 4);
     if (a > 0) {
-      const Cplx f = a * cross(lattice_angle(without_reflection(M[c])));
+      const Cplx f = a * cross(theta[c]);
       diag[c] += a;
       bre[c] += f.real();
       bim[c] += f.imag();
@@ -100,14 +101,13 @@ CrossFieldReport align_free_orientation(Background& bg, const CrossFieldOptions&
   double sum = 0;
   for (int c = 0; c < n; ++c) {
     if (w[c] <= 0) continue;
-    const Mat2 Mo = without_reflection(M[c]);
     const double phi = std::atan2(uim[c], ure[c]) / 4;
-    const double d = w[c] * wrap_quarter(phi - lattice_angle(Mo));
+    const double d = w[c] * wrap_quarter(phi - theta[c]);
     if (d == 0) continue;
     const double cs = std::cos(d), sn = std::sin(d);
     Mat2 L;
     L << cs, sn, -sn, cs;  // R(-d): the lattice axis M^-1 e_1 turns by +d (exactly when M is conformal)
-    M[c] = L * Mo;
+    M[c] = L * without_reflection(M[c]);
     ++rep.rotated_cells;
     sum += std::abs(d);
     rep.max_rotation_deg = std::max(rep.max_rotation_deg, std::abs(d) * 180 / kPi);
