@@ -42,6 +42,20 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(0.0, 10.0));
   app.add_option("--lp-exponent", opt.p, "L_p exponent p of the energy (eq. 4.1) and of eq. 4.12")
       ->capture_default_str()->check(CLI::Range(2.0, 32.0));
+  app.add_option("--boundary-norm", opt.boundary_norm, "q of the wall points' metric length |M tau|_q: 2 = the thesis's "
+                 "eq. 4.2 (--analytic's default); 0 = the L_p exponent (frames' default), which puts one wall point on every "
+                 "lattice row that crosses an oblique wall (docs/lpcvt.md, Method 2)")
+      ->capture_default_str()
+      ->check(CLI::Validator(
+          [](std::string& s) -> std::string {
+            double q = -1;
+            try {
+              q = std::stod(s);
+            } catch (...) {
+            }
+            return q == 0 || (q >= 1 && q <= 64) ? "" : s + " is neither 0 (the L_p exponent) nor in [1, 64]";
+          },
+          "0 or [1, 64]"));
   app.add_option("--scale", job.scale, "Metric scale: M_eff = scale * M, M in the quadapt convention (default 0.25; 1 for --analytic)");
   app.add_option("--convention", convention, "Size convention of FRAME: auto (the file's), quadapt or philip")
       ->capture_default_str()->check(CLI::IsMember({"auto", "quadapt", "philip"}));

@@ -8,8 +8,6 @@
 
 namespace quadapt::lpcvt {
 
-namespace {
-
 double lq_norm(const Vec2& v, double q) {
   if (q == 2) return v.norm();
   double a = std::abs(v.x()), b = std::abs(v.y());
@@ -17,8 +15,6 @@ double lq_norm(const Vec2& v, double q) {
   if (m == 0) return 0;
   return m * std::pow(std::pow(a / m, q) + std::pow(b / m, q), 1.0 / q);
 }
-
-}  // namespace
 
 std::vector<BoundaryCurve> boundary_curves(const Background& bg, double corner_angle_deg) {
   const Mesh& m = bg.mesh();
@@ -84,7 +80,7 @@ std::vector<BoundaryCurve> boundary_curves(const Background& bg, double corner_a
 }
 
 BoundaryPoints mesh_boundary(const Background& bg, const std::vector<BoundaryCurve>& curves,
-                             int samples_per_edge) {
+                             int samples_per_edge, double q) {
   const Mesh& m = bg.mesh();
   BoundaryPoints out;
   std::map<int, int> node_site;  // background node (curve end) -> site
@@ -118,7 +114,7 @@ BoundaryPoints mesh_boundary(const Background& bg, const std::vector<BoundaryCur
         double t = static_cast<double>(j) / sub;
         Vec2 y = P[k] + t * d;
         ss.push_back(S[k] + t * len);
-        dl.push_back((bg.metric(c, y) * tau).norm());
+        dl.push_back(lq_norm(bg.metric(c, y) * tau, q));
       }
     }
     std::vector<double> C(ss.size(), 0.0);  // cumulative metric length (eq. 4.3)

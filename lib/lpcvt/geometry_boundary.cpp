@@ -73,7 +73,8 @@ double turn_deg(const Vec2& a, const Vec2& b) {
 
 }  // namespace
 
-BoundaryPoints geometry_boundary(const Background& bg, const BoundaryGeometry& g, std::vector<BoundaryGroup>& groups) {
+BoundaryPoints geometry_boundary(const Background& bg, const BoundaryGeometry& g, std::vector<BoundaryGroup>& groups,
+                                 double q) {
   groups.clear();
   std::map<std::string, int> group_of;
   for (const auto& name : g.names()) {
@@ -113,7 +114,7 @@ BoundaryPoints geometry_boundary(const Background& bg, const BoundaryGeometry& g
         const double sp = tan[i].norm();
         const double kappa = sp > 0 ? std::abs(tan[i].x() * acc.y() - tan[i].y() * acc.x()) / (sp * sp * sp) : 0.0;
         const Vec2 n = sp > 0 ? Vec2(-tan[i].y() / sp, tan[i].x() / sp) : Vec2(0, 0);
-        dl[i] = std::max((M * tan[i]).norm(), sp * std::sqrt(kSagittaFactor * kappa * (M * n).norm() / 8));
+        dl[i] = std::max(lq_norm(M * tan[i], q), sp * std::sqrt(kSagittaFactor * kappa * (M * n).norm() / 8));
       }
     };
     std::vector<double> t, dl;

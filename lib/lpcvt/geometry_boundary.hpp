@@ -34,7 +34,9 @@ constexpr double kSagittaFactor = 16;
 /// Boundary points on g's curves. `groups` receives the output mesh's boundary groups (g's
 /// physical names, sorted, tags 1..n); segment_group indexes it. Throws InputError(g.source(), ...)
 /// naming the curve when it lies outside the background domain, or when the frame cannot resolve
-/// it (a segment would span a turn above kMaxSegmentTurnDeg).
-BoundaryPoints geometry_boundary(const Background& bg, const BoundaryGeometry& g, std::vector<BoundaryGroup>& groups);
+/// it (a segment would span a turn above kMaxSegmentTurnDeg). q: the norm of the metric length
+/// dL = |M_eff c'|_q, as mesh_boundary's (boundary_points.hpp).
+BoundaryPoints geometry_boundary(const Background& bg, const BoundaryGeometry& g, std::vector<BoundaryGroup>& groups,
+                                 double q = 2);
 
 }  // namespace quadapt::lpcvt

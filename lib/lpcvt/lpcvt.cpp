@@ -62,10 +62,12 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
   groups.domain_name = bg.mesh().domain_name;
   groups.domain_tag = bg.mesh().domain_tag;
   groups.groups = bg.mesh().groups;
+  const double q = opt.boundary_norm > 0 ? opt.boundary_norm : opt.p;
   auto boundary_of = [&](const Background& b) {
-    return opt.geometry ? geometry_boundary(b, *opt.geometry, groups.groups)
-                        : mesh_boundary(b, curves, opt.boundary_samples);
+    return opt.geometry ? geometry_boundary(b, *opt.geometry, groups.groups, q)
+                        : mesh_boundary(b, curves, opt.boundary_samples, q);
   };
+  r.boundary_norm = q;
   r.boundary = boundary_of(bg);
   for (double l : r.boundary.curve_length) r.boundary_metric_length += l;
   r.metric_area = bg.metric_area();
@@ -315,6 +317,7 @@ nlohmann::json to_json(const LpcvtResult& r) {
   j["points_ratio"] = r.requested_points > 0 ? r.sites.size() / r.requested_points : 0.0;
   j["metric_area"] = r.metric_area;
   j["boundary_metric_length"] = r.boundary_metric_length;
+  j["boundary_norm"] = r.boundary_norm;
   j["triangles"] = r.mesh.num_cells();
   j["metric_flips"] = r.metric_flips;
   j["requested_triangles"] = 2 * r.metric_area;

@@ -46,6 +46,9 @@ struct LpcvtOptions {
   int ramp_after = 5;           ///< cycles after which the tolerance ramps (+0.5% per cycle)
   double corner_angle = 30;     ///< degrees: boundary corners split curves
   int boundary_samples = 8;     ///< samples per background edge (analytic metrics)
+  /// q of the boundary points' metric length |M_eff tau|_q (boundary_points.hpp): 2 = the thesis's
+  /// eq. 4.2; 0 = the energy's exponent p (frames' default: one wall point per lattice row).
+  double boundary_norm = 2;
   bool polish = true;           ///< minimise once more after the last split/merge if it changed points
   bool multilevel = false;      ///< multilevel start (above); the coarsest level uses seed_mode
   int coarse_points = 250;      ///< multilevel: interior points of the coarsest level, at least
@@ -113,6 +116,7 @@ struct LpcvtResult {
   bool converged = false;          ///< outer loop converged and the last minimisation converged
   std::string stop;                ///< why it stopped, in words
   double requested_points = 0, metric_area = 0, boundary_metric_length = 0;
+  double boundary_norm = 2;     ///< the q of the boundary's metric length actually used
   Mesh mesh;                       ///< the final triangulation
 };
 

@@ -54,6 +54,7 @@ assert r["converged"] and r["cycles"] <= 8 and r["iterations"] <= 1000, (r["cycl
 # --analytic's defaults (LpcvtJob::for_analytic): no metric filters, the metric's own orientation
 assert "smoothing" not in r and "gradation" not in r, r.keys()
 assert r["orientation"] == {"mode": "frame"}, r["orientation"]
+assert r["boundary_norm"] == 2, r["boundary_norm"]  # the thesis's eq. 4.2
 PY
 $PY "$S/tests/cli/golden_compare.py" "$T/saddle-figures.json" "$S/tests/golden/lpcvt/saddle16.json" --rtol 1e-6
 $PY - "$T/saddle-vor.json" <<'PY'

@@ -38,6 +38,8 @@ assert len(r["cycle_history"]) <= 8, len(r["cycle_history"])
 s, g = r["smoothing"], r["gradation"]
 # and the lattice of the nearly isotropic cells turned to the walls (--orientation boundary)
 assert r["orientation"]["mode"] == "boundary" and r["orientation"]["free_cells"] > 0, r["orientation"]
+# the wall points spaced in the energy's L_p norm (--boundary-norm 0 = p = 6; docs/lpcvt.md, Method 2)
+assert r["boundary_norm"] == 6, r["boundary_norm"]
 assert s["passes"] == 4 and s["cells_changed"] > 0, s
 assert g["growth"] == 2.0 and g["cells_changed"] > 0, g
 raw, final = s["max_neighbour_size_ratio_before"], g["max_neighbour_size_ratio_after"]

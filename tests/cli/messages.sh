@@ -101,6 +101,9 @@ rc=0; msg=$(lpcvt --analytic saddle --orientation boundary -o "$T/o.msh" 2>&1) |
 [ $rc -eq 2 ] && echo "$msg" | grep -q -- "--orientation boundary needs a frame" || fail "lpcvt --analytic --orientation boundary: exit $rc: $msg"
 [ ! -e "$T/o.msh" ] || fail "lpcvt wrote an output after refusing its options"
 python3 "$S/tests/cli/lpcvt_frame.py" "$T/f.msh" --n 4
+rc=0; msg=$(lpcvt "$T/f.msh" --boundary-norm 0.5 -o "$T/o.msh" 2>&1) || rc=$?
+[ $rc -eq 2 ] && echo "$msg" | grep -q -- "--boundary-norm: 0.5 is neither 0 (the L_p exponent) nor in \[1, 64\]" || fail "lpcvt --boundary-norm 0.5: exit $rc: $msg"
+[ ! -e "$T/o.msh" ] || fail "lpcvt wrote an output after refusing --boundary-norm"
 lpcvt -q "$T/f.msh" -o "$T/t.msh" && recombine -q "$T/t.msh" -o "$T/q.msh"
 rc=0; msg=$(quadsmooth "$T/q.msh" -o "$T/s.msh" --corner-metric cell 2>&1) || rc=$?
 [ $rc -eq 2 ] && echo "$msg" | grep -q -- "--corner-metric applies to the shape fit only" || fail "quadsmooth --corner-metric without --frame: exit $rc: $msg"

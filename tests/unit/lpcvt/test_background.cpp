@@ -202,3 +202,44 @@ TEST_CASE("locate_near: the walk from a hint finds a containing cell, locate's o
     CHECK(found > 2000);
   }
 }
+
+TEST_CASE("boundary points in the L_q metric length: one wall point per lattice row on oblique walls") {
+  // a 5:1 frame at 45° on the unit square: every wall's metric tangent v = M tau is 11.3° off a
+  // lattice axis, |v|_inf = 0.981 |v|_2 — rows of one family cross the wall |v|_inf times per
+  // unit length; the Euclidean length asks for 2 % more wall points than rows
+  const double h = 0.02, s = 5, th = M_PI / 4;
+  Mesh m = quadapt::make_structured_quads(4, 4, 0, 1, 0, 1);
+  set_frame(m, h * std::sqrt(s), h / std::sqrt(s), th);
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  const auto curves = boundary_curves(bg);
+  REQUIRE(curves.size() == 4);
+  const BoundaryPoints b2 = mesh_boundary(bg, curves, 8, 2), b6 = mesh_boundary(bg, curves, 8, 6);
+  const Mat2 M = bg.cell(0).M;
+  for (size_t c = 0; c < curves.size(); ++c) {
+    const Vec2 a = bg.mesh().nodes[curves[c].nodes.front()], z = bg.mesh().nodes[curves[c].nodes.back()];
+    const Vec2 v = M * (z - a);
+    // constant metric: the length is the norm of the mapped chord, for either q
+    CHECK(b2.curve_length[c] == doctest::Approx(v.norm()).epsilon(1e-12));
+    CHECK(b6.curve_length[c] == doctest::Approx(lq_norm(v, 6)).epsilon(1e-12));
+    CHECK(b6.curve_segments[c] == std::lround(lq_norm(v, 6)));
+    // q = 6 counts the rows of the dominant family to within 0.3 % (|v|_inf), the Euclidean length does not
+    const double rows = std::max(std::abs(v.x()), std::abs(v.y()));
+    CHECK(b6.curve_length[c] == doctest::Approx(rows).epsilon(3e-3));
+    CHECK(b2.curve_length[c] > 1.015 * rows);
+    CHECK(b6.curve_segments[c] < b2.curve_segments[c]);
+  }
+  // a wall along a lattice axis: both lengths agree bit for bit
+  Mesh a = quadapt::make_structured_quads(4, 4, 0, 1, 0, 1);
+  set_frame(a, h * std::sqrt(s), h / std::sqrt(s), 0);
+  Background ba = Background::from_frame(a, 1.0, "mem");
+  const auto ca = boundary_curves(ba);
+  const BoundaryPoints a2 = mesh_boundary(ba, ca, 8, 2), a6 = mesh_boundary(ba, ca, 8, 6);
+  CHECK(a2.points == a6.points);
+  CHECK(lq_norm(Vec2(3, -4), 2) == 5);
+  CHECK(lq_norm(Vec2(3, -4), 1) == doctest::Approx(7).epsilon(1e-15));
+}
+
+TEST_CASE("frames' default: the boundary is spaced in the energy's L_p norm; the analytic mode keeps eq. 4.2") {
+  CHECK(LpcvtOptions::for_frame().boundary_norm == 0);  // 0 = the exponent p
+  CHECK(LpcvtOptions::for_analytic().boundary_norm == 2);
+}
