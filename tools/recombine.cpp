@@ -65,6 +65,12 @@ int main(int argc, char** argv) {
                  "chains of sheared pairs)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--interior-bonus", opt.metric.interior_bonus,
+                 "Metric matching: weight added per paired triangle without a boundary edge, so that a "
+                 "lattice defect's lone triangle is left at the wall, not one row inside it (0 = off; "
+                 "docs/recombine.md)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 10.0));
   bool no_split = false;
   app.add_flag("--no-split", no_split, "Stop after Blossom: write the quad-dominant mesh");
 

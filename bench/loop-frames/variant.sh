@@ -7,7 +7,8 @@
 # FRAME = RUNS/STUDY/pP-lpcvt/step-STEP/frame.msh (a loop of `make -f Makefile.cases studies`).
 # SETTING: "base" (the chain's defaults), "bamg" (bamgquad), "bamg-smooth" (bamgquad on the frame
 # lpcvt --smooth 4 --gradation 0 writes with --write-frame), "fit-meshed" (the default chain with
-# quadsmooth fitting the frame lpcvt meshed, its --write-frame, instead of FRAME), or lpcvt options with '_' for spaces
+# quadsmooth fitting the frame lpcvt meshed, its --write-frame, instead of FRAME), "recombine" followed
+# by recombine options with '_' for spaces (e.g. recombine--interior-bonus_0), or lpcvt options with '_' for spaces
 # (e.g. --smooth_4). Prints: STUDY pP sSTEP SETTING DOFs |functional error| sum|eta_K| (goal
 # studies), or ... DOFs L2-error L2-error (feature studies). One OpenMP thread.
 set -euo pipefail
@@ -30,6 +31,12 @@ case $V in
   bamg-smooth)
     lpcvt -q "$F" -o "$d/tri.msh" --smooth 4 --gradation 0 --orientation frame --max-iterations 1 --max-cycles 1 --write-frame "$d/frame.msh"
     bamgquad -q "$d/frame.msh" -o "$d/mesh.msh" ;;
+  recombine*)
+    read -r -a a <<< "${V#recombine}"
+    read -r -a a <<< "${a[*]//_/ }"
+    lpcvt -q "$F" -o "$d/tri.msh"
+    recombine -q "$d/tri.msh" -o "$d/quad.msh" "${a[@]}"
+    quadsmooth -q "$d/quad.msh" --frame "$F" -o "$d/mesh.msh" ;;
   fit-meshed)
     lpcvt -q "$F" -o "$d/tri.msh" --write-frame "$d/frame.msh"
     recombine -q "$d/tri.msh" -o "$d/quad.msh"

@@ -52,6 +52,13 @@ Mesh metric_pairing(const Mesh& tri, const std::vector<Eigen::Matrix2d>& M,
   std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) {
     return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.t < y.t;
   });
+  // triangles with an edge on the boundary (an edge no other triangle shares)
+  std::vector<char> wall(nt, 0);
+  for (size_t i = 0; i < he.size(); ++i) {
+    const bool prev = i > 0 && he[i - 1].a == he[i].a && he[i - 1].b == he[i].b;
+    const bool next = i + 1 < he.size() && he[i + 1].a == he[i].a && he[i + 1].b == he[i].b;
+    if (!prev && !next) wall[he[i].t] = 1;
+  }
   lemon::ListGraph g;
   std::vector<lemon::ListGraph::Node> node(nt);
   for (int t = 0; t < nt; ++t) node[t] = g.addNode();
@@ -92,7 +99,8 @@ Mesh metric_pairing(const Mesh& tri, const std::vector<Eigen::Matrix2d>& M,
     const double q = metric_quad_quality(F, P[quad[0]], P[quad[1]], P[quad[2]], P[quad[3]]);
     if (opt.min_quality > 0 && !(q > opt.min_quality)) continue;
     auto e = g.addEdge(node[x.t], node[y.t]);
-    weight[e] = std::lround(1000.0 * (q + opt.pair_bonus));
+    const int interior = (wall[x.t] ? 0 : 1) + (wall[y.t] ? 0 : 1);
+    weight[e] = std::lround(1000.0 * (q + opt.pair_bonus + opt.interior_bonus * interior));
     pair_of[e] = static_cast<int>(pairs.size());
     pairs.push_back({x.t, y.t, quad, q});
   }
@@ -117,16 +125,18 @@ Mesh metric_pairing(const Mesh& tri, const std::vector<Eigen::Matrix2d>& M,
     out.cells.push_back(c);
     qsum += p.q;
   }
-  int left = 0;
+  int left = 0, left_wall = 0;
   for (int t = 0; t < nt; ++t)
     if (!used[t]) {
       out.cells.push_back(tri.cells[t]);
       ++left;
+      left_wall += wall[t];
     }
   if (stats) {
     stats->triangles_in = nt;
     stats->quads = static_cast<int>(chosen.size());
     stats->triangles = left;
+    stats->wall_triangles = left_wall;
     stats->mean_quality = chosen.empty() ? 0.0 : qsum / chosen.size();
     stats->candidate_pairs = static_cast<int>(pairs.size());
   }

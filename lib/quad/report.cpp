@@ -41,6 +41,7 @@ nlohmann::json to_json(const RecombineStats& s) {
            {{"triangles_in", s.metric.triangles_in},
             {"quads", s.metric.quads},
             {"triangles", s.metric.triangles},
+            {"wall_triangles", s.metric.wall_triangles},
             {"candidate_pairs", s.metric.candidate_pairs},
             {"mean_metric_quality", s.metric.mean_quality}}},
           {"cells", s.cells_out},

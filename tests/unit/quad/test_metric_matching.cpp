@@ -3,7 +3,9 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "quad/metric_matching.hpp"
 
@@ -98,4 +100,49 @@ TEST_CASE("metric pairing: an odd triangle count leaves one triangle, a sheared-
   CHECK(st.quads == 0);
   metric_pairing(two, {}, {}, &st);
   CHECK(st.quads == 1);
+}
+
+TEST_CASE("metric pairing: the interior bonus leaves the lone triangle at the wall") {
+  // seven triangles: T0 = (0,0) (1,0) (0,1) in the middle, with no boundary edge; across each of
+  // its edges a half-square Ti whose other half T(i+3) lies beyond (three squares, quality 1);
+  // T0 with any Ti is a 45-degree parallelogram (quality 0.5). Odd count: one stays a triangle.
+  Mesh m;
+  m.nodes = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1), Vec2(1, -1), Vec2(0, -1),
+             Vec2(-1, 1), Vec2(-1, 0), Vec2(1, 2), Vec2(2, 1)};
+  for (const std::array<int, 3>& t : std::vector<std::array<int, 3>>{
+           {0, 1, 2}, {0, 3, 1}, {0, 2, 5}, {1, 7, 2}, {0, 4, 3}, {0, 5, 6}, {1, 8, 7}}) {
+    Cell c;
+    c.nv = 3;
+    c.v = {t[0], t[1], t[2], -1};
+    m.cells.push_back(c);
+  }
+  MetricMatchingStats st;
+  MetricMatchingOptions o;
+  // without the bonus: three squares (3 x 1.5) beat a parallelogram and two squares (1 + 2 x 1.5),
+  // so the interior T0 is left
+  o.interior_bonus = 0;
+  Mesh q = metric_pairing(m, {}, o, &st);
+  CHECK(st.quads == 3);
+  CHECK(st.triangles == 1);
+  CHECK(st.wall_triangles == 0);
+  CHECK(st.mean_quality == doctest::Approx(1.0));
+  // the parallelogram pays the bonus once (T0 is interior): it wins when 0.5 + bonus > 1
+  o.interior_bonus = 0.4;
+  metric_pairing(m, {}, o, &st);
+  CHECK(st.wall_triangles == 0);
+  o.interior_bonus = 0.6;
+  q = metric_pairing(m, {}, o, &st);
+  CHECK(st.quads == 3);
+  CHECK(st.triangles == 1);
+  CHECK(st.wall_triangles == 1);
+  CHECK(st.mean_quality == doctest::Approx((0.5 + 1 + 1) / 3));
+  REQUIRE(q.cells.back().nv == 3);
+  bool t0_matched = false;
+  for (const Cell& c : q.cells)
+    if (c.nv == 4) {
+      int hits = 0;
+      for (int k = 0; k < 4; ++k) hits += c.v[k] == 0 || c.v[k] == 1 || c.v[k] == 2;
+      t0_matched |= hits == 3;
+    }
+  CHECK(t0_matched);
 }
