@@ -99,6 +99,11 @@ int main(int argc, char** argv) {
           throw InputError(in, "--matching metric needs a frame: a cell field Vinv in TRI or --frame FRAME.msh");
         }
         opt.matching = RecombineOptions::Matching::Metric;
+      } else {
+        for (const char* o : {"--min-quality", "--pair-bonus", "--interior-bonus"})
+          if (app.count(o))
+            throw InputError("", std::string(o) + " applies to the metric matching only: give a frame (TRI's "
+                                                  "cell field Vinv or --frame FRAME.msh), not --matching blossom");
       }
     }
     tool.option("matching", matching);

@@ -35,7 +35,7 @@ case $V in
     read -r -a a <<< "${V#recombine}"
     read -r -a a <<< "${a[*]//_/ }"
     lpcvt -q "$F" -o "$d/tri.msh"
-    recombine -q "$d/tri.msh" -o "$d/quad.msh" "${a[@]}"
+    recombine -q "$d/tri.msh" -o "$d/quad.msh" ${a[@]+"${a[@]}"}
     quadsmooth -q "$d/quad.msh" --frame "$F" -o "$d/mesh.msh" ;;
   fit-meshed)
     lpcvt -q "$F" -o "$d/tri.msh" --write-frame "$d/frame.msh"

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/error.hpp"
 #include "frame/frame.hpp"
 #include "lpcvt/delaunay.hpp"
 #include "lpcvt/geometry_boundary.hpp"
@@ -62,6 +63,8 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
   groups.domain_name = bg.mesh().domain_name;
   groups.domain_tag = bg.mesh().domain_tag;
   groups.groups = bg.mesh().groups;
+  if (!(opt.boundary_norm == 0 || (opt.boundary_norm >= 1 && opt.boundary_norm <= 64)))
+    throw InputError("", "boundary_norm " + std::to_string(opt.boundary_norm) + " is neither 0 (the L_p exponent) nor in [1, 64]");
   const double q = opt.boundary_norm > 0 ? opt.boundary_norm : opt.p;
   auto boundary_of = [&](const Background& b) {
     return opt.geometry ? geometry_boundary(b, *opt.geometry, groups.groups, q)

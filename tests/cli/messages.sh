@@ -105,6 +105,9 @@ rc=0; msg=$(lpcvt "$T/f.msh" --boundary-norm 0.5 -o "$T/o.msh" 2>&1) || rc=$?
 [ $rc -eq 2 ] && echo "$msg" | grep -q -- "--boundary-norm: 0.5 is neither 0 (the L_p exponent) nor in \[1, 64\]" || fail "lpcvt --boundary-norm 0.5: exit $rc: $msg"
 [ ! -e "$T/o.msh" ] || fail "lpcvt wrote an output after refusing --boundary-norm"
 lpcvt -q "$T/f.msh" -o "$T/t.msh" && recombine -q "$T/t.msh" -o "$T/q.msh"
+rc=0; msg=$(recombine "$T/t.msh" -o "$T/qb.msh" --matching blossom --interior-bonus 0.2 2>&1) || rc=$?
+[ $rc -eq 2 ] && echo "$msg" | grep -q -- "--interior-bonus applies to the metric matching only" || fail "recombine --matching blossom --interior-bonus: exit $rc: $msg"
+[ ! -e "$T/qb.msh" ] || fail "recombine wrote an output after refusing --interior-bonus"
 rc=0; msg=$(quadsmooth "$T/q.msh" -o "$T/s.msh" --corner-metric cell 2>&1) || rc=$?
 [ $rc -eq 2 ] && echo "$msg" | grep -q -- "--corner-metric applies to the shape fit only" || fail "quadsmooth --corner-metric without --frame: exit $rc: $msg"
 

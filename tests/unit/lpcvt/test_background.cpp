@@ -243,3 +243,24 @@ TEST_CASE("frames' default: the boundary is spaced in the energy's L_p norm; the
   CHECK(LpcvtOptions::for_frame().boundary_norm == 0);  // 0 = the exponent p
   CHECK(LpcvtOptions::for_analytic().boundary_norm == 2);
 }
+
+TEST_CASE("lq_norm against hand values; the library refuses a norm that is not one") {
+  CHECK(lq_norm(Vec2(3, 4), 6) == doctest::Approx(std::pow(4825.0, 1.0 / 6)).epsilon(1e-14));  // 3^6 + 4^6
+  CHECK(lq_norm(Vec2(-1, 1), 1) == doctest::Approx(2).epsilon(1e-15));
+  CHECK(lq_norm(Vec2(0, -2), 6) == 2);
+  CHECK(lq_norm(Vec2(0, 0), 6) == 0);
+  Mesh m = quadapt::make_structured_quads(2, 2, 0, 1, 0, 1);
+  set_frame(m, 0.2, 0.2, 0);
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  LpcvtOptions o = LpcvtOptions::for_frame();
+  o.boundary_norm = 0.5;
+  CHECK_THROWS_AS(run_lpcvt(bg, o), quadapt::InputError);
+  o.boundary_norm = -1;
+  CHECK_THROWS_AS(run_lpcvt(bg, o), quadapt::InputError);
+  // 0 = the energy's exponent: the result reports the q it used
+  o.boundary_norm = 0;
+  o.p = 4;
+  o.max_cycles = 1;
+  o.lbfgs.max_iterations = 2;
+  CHECK(run_lpcvt(bg, o).boundary_norm == 4);
+}

@@ -51,3 +51,24 @@ TEST_CASE("geometry_boundary: a frame too coarse for the curve, and a geometry o
   CHECK_THROWS_WITH_AS(geometry_boundary(disk_background(0.1), big, groups),
                        doctest::Contains("outside the frame's domain"), InputError);
 }
+
+TEST_CASE("geometry_boundary: the metric length in the L_q norm (lpcvt --boundary-norm)") {
+  // M = I / h on the unit circle: dL = |c'(t)|_q / h = (|sin t|^q + |cos t|^q)^(1/q) / h
+  const double h = 0.1;
+  for (double q : {2.0, 6.0}) {
+    CAPTURE(q);
+    const int n = 20000;  // composite Simpson over one period
+    double L = 0;
+    for (int k = 0; k <= n; ++k) {
+      const double t = 2 * M_PI * k / n, w = (k == 0 || k == n) ? 1 : (k % 2 ? 4 : 2);
+      L += w * std::pow(std::pow(std::abs(std::sin(t)), q) + std::pow(std::abs(std::cos(t)), q), 1 / q) / h;
+    }
+    L *= 2 * M_PI / (3.0 * n);
+    std::vector<BoundaryGroup> groups;
+    const BoundaryPoints b = geometry_boundary(disk_background(h), kCircle, groups, q);
+    CHECK(b.curve_length[0] == doctest::Approx(L).epsilon(1e-5));
+    CHECK(static_cast<int>(b.points.size()) == std::lround(L));
+    if (q == 6) CHECK(L < 0.93 * 2 * M_PI / h);  // a rotation-dependent count: fewer points where the
+                                                 // tangent is diagonal to the metric's axes
+  }
+}
