@@ -31,27 +31,39 @@ bool clip_halfplane(std::vector<Vec2>& v, std::vector<int>& label, const Vec2& n
     label.clear();
     return false;
   }
-  tmp_v.clear();
-  tmp_l.clear();
+  // into a buffer on the stack (two vertices per edge at most), then copied back: no
+  // per-vertex capacity checks, and v keeps its storage (the same arithmetic as before)
+  constexpr int kStack = 64;
+  Vec2 buf_v[kStack];
+  int buf_l[kStack];
+  Vec2* ov = buf_v;
+  int* ol = buf_l;
+  if (2 * m > kStack) {
+    tmp_v.resize(2 * m);
+    tmp_l.resize(2 * m);
+    ov = tmp_v.data();
+    ol = tmp_l.data();
+  }
+  int c = 0;
   for (int k = 0; k < m; ++k) {
     const int k1 = (k + 1 == m) ? 0 : k + 1;
     const double sa = sd[k], sb = sd[k1];
     if (sa <= 0) {
-      tmp_v.push_back(v[k]);
-      tmp_l.push_back(label[k]);
+      ov[c] = v[k];
+      ol[c++] = label[k];
       if (sb > 0) {
         double t = sa / (sa - sb);
-        tmp_v.push_back(v[k] + t * (v[k1] - v[k]));
-        tmp_l.push_back(lab);
+        ov[c] = v[k] + t * (v[k1] - v[k]);
+        ol[c++] = lab;
       }
     } else if (sb <= 0) {
       double t = sa / (sa - sb);
-      tmp_v.push_back(v[k] + t * (v[k1] - v[k]));
-      tmp_l.push_back(label[k]);
+      ov[c] = v[k] + t * (v[k1] - v[k]);
+      ol[c++] = label[k];
     }
   }
-  v.swap(tmp_v);
-  label.swap(tmp_l);
+  v.assign(ov, ov + c);
+  label.assign(ol, ol + c);
   if (v.size() < 3) {
     v.clear();
     label.clear();
