@@ -259,7 +259,8 @@ ClosedFn closed_for(int p) {
 struct EnergyWorkspace::Impl {
   std::unique_ptr<DelaunayGraph> dt;  // kept between evaluations (DelaunayGraph::update)
   std::unique_ptr<MetricGraph> mg;    // metric cells: dt flipped in the metric
-  long updates = 0, rebuilds = 0;
+  long updates = 0, rebuilds = 0, carried = 0;
+  std::vector<int> starts;  // metric cells: the last evaluation's start sites (RestrictedVoronoi)
   std::vector<ContribBuf> contrib;  // per integration cell
   struct Thread {
     RvdWorkspace rvd;
@@ -277,6 +278,7 @@ EnergyTimers& EnergyTimers::operator+=(const EnergyTimers& o) {
   evaluations += o.evaluations;
   updates += o.updates;
   rebuilds += o.rebuilds;
+  carried += o.carried;
   box_queries += o.box_queries;
   box_hits += o.box_hits;
   return *this;
@@ -340,7 +342,13 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
   if (ws) {
     EnergyWorkspace::Impl& W = *ws->impl;
     const bool metric = bg.metric_cells();
-    if (!W.dt) {
+    // metric cells: the last evaluation's metric graph carried to the new sites by flips (no
+    // Euclidean Delaunay graph), else (a triangle would invert) rebuilt from the Euclidean one
+    const bool carry = metric && ws->settings.carry_metric_graph && W.mg && W.starts.size() == static_cast<size_t>(bg.num_cells()) &&
+                       update_metric_graph(bg, sites, *W.mg);
+    if (carry) {
+      ++W.carried;
+    } else if (!W.dt) {
       W.dt = std::make_unique<DelaunayGraph>(sites, metric, !metric);
       ++W.rebuilds;
     } else if (W.dt->update(sites)) {
@@ -348,7 +356,9 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
     } else {
       ++W.rebuilds;
     }
-    if (metric) {
+    if (carry) {
+      rvd = std::make_unique<RestrictedVoronoi>(bg, sites, *W.mg, W.starts);
+    } else if (metric) {
       W.mg = std::make_unique<MetricGraph>(build_metric_graph(bg, sites, *W.dt));
       rvd = std::make_unique<RestrictedVoronoi>(bg, sites, *W.dt, W.mg.get());
     } else {
@@ -357,6 +367,7 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
   } else {
     rvd = std::make_unique<RestrictedVoronoi>(bg, sites);
   }
+  if (ws && bg.metric_cells()) ws->impl->starts = rvd->starts();
   const auto t1 = Clock::now();
   EnergyResult r = lp_energy(*rvd, bg, p, gradient, ws, gamma);
   const auto t2 = Clock::now();
@@ -365,6 +376,7 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
     T.delaunay += std::chrono::duration<double>(t1 - t0).count();
     T.updates = ws->impl->updates;
     T.rebuilds = ws->impl->rebuilds;
+    T.carried = ws->impl->carried;
     T.box_queries = T.box_hits = 0;
     for (const auto& th : ws->impl->threads) {
       T.box_queries += th.rvd.box_queries;

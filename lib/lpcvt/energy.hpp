@@ -64,6 +64,9 @@ struct EnergyResult {
 /// How the energy is evaluated (no effect on the value beyond rounding).
 struct EnergySettings {
   bool closed_form = true;        ///< the closed form (above) where it applies; tests compare both paths
+  bool carry_metric_graph = true;  ///< metric cells: carry the metric graph between evaluations by
+                                   ///< flips (update_metric_graph) instead of rebuilding it from a
+                                   ///< Euclidean Delaunay graph (changes the rounding only)
   int min_parallel_sites = 2000;  ///< OpenMP from this many sites on (smaller problems lose more to
                                   ///< thread start-up than they gain); tests set 0 for the parallel path
 };
@@ -74,6 +77,7 @@ struct EnergyTimers {
   double delaunay = 0, integrate = 0;
   long evaluations = 0;
   long updates = 0, rebuilds = 0;  ///< Delaunay graphs updated by flips / rebuilt
+  long carried = 0;                ///< metric cells: metric graphs carried from the evaluation before
   long box_queries = 0, box_hits = 0;  ///< metric cells' security-radius searches: site-tree
                                        ///< queries / answered from a cached box (rvd.hpp)
   EnergyTimers& operator+=(const EnergyTimers& o);

@@ -32,37 +32,13 @@ double metric_incircle(const Eigen::Matrix2d& M, const Vec2& a, const Vec2& b, c
   return (M(0, 0) * M(1, 1) - M(0, 1) * M(1, 0) < 0 ? -det : det) / (s * s);
 }
 
-MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<int, 3>> tris,
-                            const EdgeMetric& metric) {
+namespace {
+
+/// Lawson flips of the triangles T (with their adjacency) by the flip rule (header), then the
+/// neighbour lists; T's final state is kept in g (tris, tnb) for metric_delaunay_update.
+MetricGraph flip_and_list(const std::vector<Vec2>& x, std::vector<Tri>& T, const EdgeMetric& metric) {
   const int n = static_cast<int>(x.size());
-  const int nt = static_cast<int>(tris.size());
-  std::vector<Tri> T(nt);
-  {
-    // triangle adjacency from the outgoing half-edges of every vertex (CSR; no hashing)
-    std::vector<int> hptr(n + 1, 0), hto(3 * static_cast<size_t>(nt)), hid(3 * static_cast<size_t>(nt));
-    for (int t = 0; t < nt; ++t)
-      for (int k = 0; k < 3; ++k) ++hptr[tris[t][(k + 1) % 3] + 1];
-    for (int i = 0; i < n; ++i) hptr[i + 1] += hptr[i];
-    std::vector<int> fill(hptr.begin(), hptr.end() - 1);
-    for (int t = 0; t < nt; ++t) {
-      T[t].v = tris[t];
-      T[t].nb = {-1, -1, -1};
-      for (int k = 0; k < 3; ++k) {  // directed edge a -> b of triangle t, opposite v[k]
-        const int h = fill[tris[t][(k + 1) % 3]]++;
-        hto[h] = tris[t][(k + 2) % 3];
-        hid[h] = t;
-      }
-    }
-    for (int t = 0; t < nt; ++t)
-      for (int k = 0; k < 3; ++k) {
-        const int a = tris[t][(k + 2) % 3], b = tris[t][(k + 1) % 3];  // the twin b <- a
-        for (int h = hptr[a]; h < hptr[a + 1]; ++h)
-          if (hto[h] == b) {
-            T[t].nb[k] = hid[h];
-            break;
-          }
-      }
-  }
+  const int nt = static_cast<int>(T.size());
   MetricGraph g;
   // Edge stack, seeded with every interior edge once (t < neighbour), in triangle order
   // (deterministic).
@@ -118,6 +94,7 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
   // neighbour lists (CSR, sorted): every edge once, from the triangle with the smaller index (or
   // its only one on the hull)
   g.tris.resize(nt);
+  g.tnb.resize(nt);
   g.ptr.assign(n + 1, 0);
   auto owns = [&](int t, int k) {  // edge v[k] -> v[k+1] of t, opposite v[k+2]
     const int u = T[t].nb[(k + 2) % 3];
@@ -125,6 +102,7 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
   };
   for (int t = 0; t < nt; ++t) {
     g.tris[t] = T[t].v;
+    g.tnb[t] = T[t].nb;
     for (int k = 0; k < 3; ++k)
       if (owns(t, k)) {
         ++g.ptr[T[t].v[k] + 1];
@@ -155,6 +133,57 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
   g.ptr[n] = w;
   g.adj.resize(w);
   return g;
+}
+
+}  // namespace
+
+MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<int, 3>> tris,
+                            const EdgeMetric& metric) {
+  const int n = static_cast<int>(x.size());
+  const int nt = static_cast<int>(tris.size());
+  std::vector<Tri> T(nt);
+  {
+    // triangle adjacency from the outgoing half-edges of every vertex (CSR; no hashing)
+    std::vector<int> hptr(n + 1, 0), hto(3 * static_cast<size_t>(nt)), hid(3 * static_cast<size_t>(nt));
+    for (int t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k) ++hptr[tris[t][(k + 1) % 3] + 1];
+    for (int i = 0; i < n; ++i) hptr[i + 1] += hptr[i];
+    std::vector<int> fill(hptr.begin(), hptr.end() - 1);
+    for (int t = 0; t < nt; ++t) {
+      T[t].v = tris[t];
+      T[t].nb = {-1, -1, -1};
+      for (int k = 0; k < 3; ++k) {  // directed edge a -> b of triangle t, opposite v[k]
+        const int h = fill[tris[t][(k + 1) % 3]]++;
+        hto[h] = tris[t][(k + 2) % 3];
+        hid[h] = t;
+      }
+    }
+    for (int t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int a = tris[t][(k + 2) % 3], b = tris[t][(k + 1) % 3];  // the twin b <- a
+        for (int h = hptr[a]; h < hptr[a + 1]; ++h)
+          if (hto[h] == b) {
+            T[t].nb[k] = hid[h];
+            break;
+          }
+      }
+  }
+  return flip_and_list(x, T, metric);
+}
+
+bool metric_delaunay_update(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric& metric) {
+  if (g.num_sites() != static_cast<int>(x.size()) || g.tnb.size() != g.tris.size()) return false;
+  const int nt = static_cast<int>(g.tris.size());
+  std::vector<Tri> T(nt);
+  for (int t = 0; t < nt; ++t) {
+    const std::array<int, 3>& v = g.tris[t];
+    // every triangle still counter-clockwise at the new positions (else the caller rebuilds)
+    if (!(cross2(x[v[1]] - x[v[0]], x[v[2]] - x[v[0]]) > 0)) return false;
+    T[t].v = v;
+    T[t].nb = g.tnb[t];
+  }
+  g = flip_and_list(x, T, metric);
+  return true;
 }
 
 }  // namespace quadapt::lpcvt

@@ -4,6 +4,8 @@
 #include <atomic>
 #include <limits>
 
+#include "core/error.hpp"
+
 namespace quadapt::lpcvt {
 
 namespace {
@@ -91,16 +93,30 @@ namespace {
 std::atomic<long> next_rvd_id{1};
 }  // namespace
 
-MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
-                               std::vector<std::array<int, 3>> tris) {
+namespace {
+/// The flip rule's metric: the background cell's at the flip quadrilateral's centroid (walks
+/// from the previous answer).
+struct QuadMetric {
+  const Background& bg;
   int hint = -1;
-  auto metric = [&](const std::array<Vec2, 4>& q) -> Mat2 {
+  Mat2 operator()(const std::array<Vec2, 4>& q) {
     int c = bg.locate_near(0.25 * (q[0] + q[1] + q[2] + q[3]), hint);
     if (c < 0) return Mat2::Zero();  // a chord outside the domain: never flipped
     hint = c;
     return bg.cell(c).M;
-  };
-  return metric_delaunay(sites, std::move(tris), metric);
+  }
+};
+}  // namespace
+
+MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
+                               std::vector<std::array<int, 3>> tris) {
+  QuadMetric m{bg};
+  return metric_delaunay(sites, std::move(tris), [&](const std::array<Vec2, 4>& q) { return m(q); });
+}
+
+bool update_metric_graph(const Background& bg, const std::vector<Vec2>& sites, MetricGraph& g) {
+  QuadMetric m{bg};
+  return metric_delaunay_update(sites, g, [&](const std::array<Vec2, 4>& q) { return m(q); });
 }
 
 MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
@@ -134,6 +150,14 @@ RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec
   find_starts();
 }
 
+RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const MetricGraph& mg,
+                                     std::vector<int> start_guess)
+    : bg_(&bg), sites_(&sites), id_(next_rvd_id++), mg_(&mg), start_(std::move(start_guess)) {
+  if (static_cast<int>(start_.size()) != bg.num_cells())
+    throw NumericalError("RestrictedVoronoi: one start guess per integration cell expected");
+  find_starts();
+}
+
 void RestrictedVoronoi::find_starts() {
   const Background& bg = *bg_;
   std::vector<Vec2> centroids(bg.num_cells());
@@ -143,7 +167,7 @@ void RestrictedVoronoi::find_starts() {
     for (int k = 0; k < c.nv; ++k) g += c.v[k];
     centroids[q] = g / c.nv;
   }
-  start_ = dt_->nearest(centroids);
+  if (dt_) start_ = dt_->nearest(centroids);  // else the guesses given
   if (!mg_) return;
   tree_ = SiteTree(*sites_);
   // nearest in G_Q: greedy walk over the metric graph from the Euclidean nearest site (exact for
@@ -244,7 +268,7 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
     qn[e] = Vec2(t.y(), -t.x());
     qd[e] = qn[e].dot(Q.v[e]);
   }
-  const bool poly = dt_->has_voronoi() && !mg_;
+  const bool poly = !mg_ && dt_->has_voronoi();
   const Mat2 G = bg_->partition_metric(q);
   ws.queue.clear();
   ws.queue.push_back(s0);
@@ -256,7 +280,7 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
     RvdPiece& p = out[count];
     p.site = i;
     p.cell = q;
-    const int deg = dt_->degree(i);
+    const int deg = mg_ ? 0 : dt_->degree(i);
     if (mg_) {
       // Q clipped by the G_Q-bisectors of the metric neighbours, then of every site within the
       // security radius: the piece is exact when each site j with |x_j - x_i|_G < 2 R (R the

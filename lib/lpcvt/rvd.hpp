@@ -73,8 +73,15 @@ class RestrictedVoronoi {
   /// the G_Q-bisectors of its neighbours. `dt` serves the start sites.
   RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const DelaunayGraph& dt,
                     const MetricGraph* mg);
+  /// Metric cells without a Delaunay graph (e.g. `mg` carried by update_metric_graph): the start
+  /// site of every integration cell from `start_guess` (any site per cell, e.g. the last
+  /// evaluation's starts(); the same starts result), refined as always. delaunay() is not available.
+  RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const MetricGraph& mg,
+                    std::vector<int> start_guess);
 
   const DelaunayGraph& delaunay() const { return *dt_; }
+  /// Per integration cell: the site nearest to its centroid in G_Q (-1: none).
+  const std::vector<int>& starts() const { return start_; }
   const std::vector<Vec2>& sites() const { return *sites_; }
 
   /// The non-empty pieces inside integration cell q, in breadth-first order from the start
@@ -111,6 +118,10 @@ class RestrictedVoronoi {
 /// quadrilateral's centroid (never flipped where that centroid is outside the domain).
 MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
                                std::vector<std::array<int, 3>> tris);
+
+/// Carries the metric graph `g` of these sites' earlier positions to `sites` with the same flip
+/// metric (metric_delaunay_update); false, g unchanged, when a triangle would invert.
+bool update_metric_graph(const Background& bg, const std::vector<Vec2>& sites, MetricGraph& g);
 
 /// The same, starting from the Delaunay triangulation `dt` (built with triangles).
 MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
