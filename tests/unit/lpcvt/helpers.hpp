@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lpcvt/background.hpp"
+#include "lpcvt/boundary_points.hpp"
 #include "lpcvt/energy.hpp"
 #include "mesh/mesh.hpp"
 
@@ -73,6 +74,42 @@ inline std::vector<Vec2> random_inside(const Background& bg, int n, unsigned see
     if (bg.inside(y)) p.push_back(y);
   }
   return p;
+}
+
+/// The boundary points of bg's domain (mesh_boundary; nfixed of them) followed by n random points inside.
+inline std::vector<Vec2> boundary_and_random(const Background& bg, int n, unsigned seed, int& nfixed) {
+  BoundaryPoints b = mesh_boundary(bg, boundary_curves(bg));
+  std::vector<Vec2> s = b.points;
+  nfixed = static_cast<int>(s.size());
+  auto in = random_inside(bg, n, seed);
+  s.insert(s.end(), in.begin(), in.end());
+  return s;
+}
+
+/// M with M^T M of sizes h1 along (cos theta, sin theta), h2 across.
+inline Mat2 rotated_metric(double h1, double h2, double theta) {
+  Mat2 M;
+  const double c = std::cos(theta), s = std::sin(theta);
+  M << c / h1, s / h1, -s / h2, c / h2;
+  return M;
+}
+
+/// A graded frame with metric cells on the saddle square (12 x 12 cells): sizes 4x apart across
+/// the square, 5:1, the direction rotating with y.
+inline Background graded_metric_background() {
+  Mesh m = saddle_square(12);
+  set_frame(m, 0.2, 0.04, 0.3);
+  quadapt::CellField* f = m.cell_field("Vinv");
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const Vec2 z = (m.nodes[m.cells[c].v[0]] + m.nodes[m.cells[c].v[2]]) / 2;
+    const double s = std::pow(4.0, (z.x() + 1.3) / 2.6), th = 0.3 + 0.8 * z.y();
+    const Mat2 M = rotated_metric(0.2 / s, 0.04 / s, th);
+    for (int r = 0; r < 2; ++r)
+      for (int q = 0; q < 2; ++q) f->values[9 * c + 3 * r + q] = M(r, q);
+  }
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  bg.set_metric_cells(true);
+  return bg;
 }
 
 /// Max over the free sites x[nfixed..] of |g_fd - g| / |g|: the L_6 energy's gradient (weight

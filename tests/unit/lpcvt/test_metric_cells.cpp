@@ -28,21 +28,6 @@ double area_of(const std::vector<Vec2>& v) {
   return 0.5 * a;
 }
 
-std::vector<Vec2> boundary_and_random(const Background& bg, int n, unsigned seed, int& nfixed) {
-  BoundaryPoints b = mesh_boundary(bg, boundary_curves(bg));
-  std::vector<Vec2> s = b.points;
-  nfixed = static_cast<int>(s.size());
-  auto in = random_inside(bg, n, seed);
-  s.insert(s.end(), in.begin(), in.end());
-  return s;
-}
-
-Mat2 rotated_metric(double h1, double h2, double theta) {
-  Mat2 M;
-  const double c = std::cos(theta), s = std::sin(theta);
-  M << c / h1, s / h1, -s / h2, c / h2;
-  return M;
-}
 }  // namespace
 
 TEST_CASE("metric in-circle: invariant under the map, sign as the Euclidean test in the mapped plane") {
@@ -237,20 +222,7 @@ TEST_CASE("site tree: a box query lists its sites in one fixed order, a larger b
 TEST_CASE("metric pieces: the cached security boxes give the pieces of fresh site-tree queries, bit for bit") {
   // a graded frame (sizes 4x apart across the square, 5:1, rotating): a site's pieces in
   // neighbouring cells reuse its box (box_hits), which must change nothing
-  Mesh m = saddle_square(12);
-  set_frame(m, 0.2, 0.04, 0.3);
-  {
-    quadapt::CellField* f = m.cell_field("Vinv");
-    for (int c = 0; c < m.num_cells(); ++c) {
-      const Vec2 z = (m.nodes[m.cells[c].v[0]] + m.nodes[m.cells[c].v[2]]) / 2;
-      const double s = std::pow(4.0, (z.x() + 1.3) / 2.6), th = 0.3 + 0.8 * z.y();
-      const Mat2 M = rotated_metric(0.2 / s, 0.04 / s, th);
-      for (int r = 0; r < 2; ++r)
-        for (int q = 0; q < 2; ++q) f->values[9 * c + 3 * r + q] = M(r, q);
-    }
-  }
-  Background bg = Background::from_frame(m, 1.0, "mem");
-  bg.set_metric_cells(true);
+  Background bg = graded_metric_background();
   int nfixed = 0;
   auto x = boundary_and_random(bg, 1500, 21, nfixed);
   RestrictedVoronoi rvd(bg, x);

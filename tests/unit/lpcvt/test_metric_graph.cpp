@@ -1,0 +1,123 @@
+// The metric graph carried between energy evaluations (lpcvt/metric_graph.hpp,
+// metric_delaunay_update; energy.hpp's carry_metric_graph): the same graph as a rebuild where the
+// flip rule has one answer, a refusal (nothing changed) when a triangle would invert, and the
+// same energy and gradient (to rounding) as with the graph rebuilt at every evaluation.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "helpers.hpp"
+#include "lpcvt/delaunay.hpp"
+#include "lpcvt/energy.hpp"
+#include "lpcvt/metric_graph.hpp"
+#include "lpcvt/rvd.hpp"
+
+using namespace lpcvt_test;
+
+namespace {
+
+/// 300 random points in the unit square and its 4 corners (first; they never move).
+std::vector<Vec2> square_points(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(0, 1);
+  std::vector<Vec2> x = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  for (int i = 0; i < 300; ++i) x.emplace_back(U(rng), U(rng));
+  return x;
+}
+
+MetricGraph rebuilt(const std::vector<Vec2>& x, const Mat2& M) {
+  DelaunayGraph dt(x, true, false);
+  return metric_delaunay(x, dt.triangles(), [&](const std::array<Vec2, 4>&) { return M; });
+}
+
+}  // namespace
+
+TEST_CASE("carried metric graph: after a random move, the graph a rebuild gives (constant metric)") {
+  const Mat2 M = rotated_metric(0.2, 0.02, 0.5);
+  const std::vector<Vec2> x0 = square_points(5);
+  const MetricGraph g0 = rebuilt(x0, M);
+  // every interior site moved at random by up to `scale`; the largest scale (halved from a
+  // fifth of the mean spacing) at which no triangle inverts
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> U(-1, 1);
+  std::vector<Vec2> dir(x0.size(), Vec2::Zero());
+  for (size_t i = 4; i < x0.size(); ++i) dir[i] = Vec2(U(rng), U(rng));
+  double scale = 0.2 / std::sqrt(300.0);
+  MetricGraph g;
+  std::vector<Vec2> x1;
+  bool ok = false;
+  for (int k = 0; k < 20 && !ok; ++k, scale /= 2) {
+    x1 = x0;
+    for (size_t i = 0; i < x0.size(); ++i) x1[i] += scale * dir[i];
+    g = g0;
+    ok = metric_delaunay_update(x1, g, [&](const std::array<Vec2, 4>&) { return M; });
+  }
+  REQUIRE(ok);
+  CHECK(g.flips > 0);  // the move changed the graph
+  const MetricGraph g1 = rebuilt(x1, M);
+  CHECK(g.ptr == g1.ptr);
+  CHECK(g.adj == g1.adj);
+  CHECK(g.adj != g0.adj);  // without the flips the graphs differ (the test can fail)
+  // and the carried graph carries on: a second move, flipped again, is again the rebuild's
+  std::vector<Vec2> x2 = x1;
+  for (size_t i = 4; i < x0.size(); ++i) x2[i] += 0.5 * scale * Vec2(dir[i].y(), -dir[i].x());
+  if (metric_delaunay_update(x2, g, [&](const std::array<Vec2, 4>&) { return M; })) {
+    const MetricGraph g2 = rebuilt(x2, M);
+    CHECK(g.adj == g2.adj);
+  }
+}
+
+TEST_CASE("carried metric graph: a move that would invert a triangle is refused, the graph unchanged") {
+  const Mat2 M = rotated_metric(0.2, 0.02, 0.5);
+  const std::vector<Vec2> x0 = square_points(7);
+  MetricGraph g = rebuilt(x0, M);
+  const MetricGraph before = g;
+  std::vector<Vec2> x1 = x0;
+  std::swap(x1[10], x1[200]);  // two far sites trade places: their triangles turn over
+  CHECK_FALSE(metric_delaunay_update(x1, g, [&](const std::array<Vec2, 4>&) { return M; }));
+  CHECK(g.tris == before.tris);
+  CHECK(g.adj == before.adj);
+  CHECK(g.ptr == before.ptr);
+}
+
+TEST_CASE("metric cells: any start guess gives the same start sites") {
+  const Background bg = graded_metric_background();
+  int nfixed = 0;
+  const std::vector<Vec2> x = boundary_and_random(bg, 800, 3, nfixed);
+  const RestrictedVoronoi exact(bg, x);  // starts from the Euclidean Delaunay graph's nearest sites
+  MetricGraph mg = build_metric_graph(bg, x, DelaunayGraph(x, true, false));
+  const RestrictedVoronoi guessed(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed + 17));
+  CHECK(guessed.starts() == exact.starts());
+}
+
+TEST_CASE("energy with the carried metric graph: the rebuilt graph's energy and gradient, to rounding") {
+  const Background bg = graded_metric_background();
+  int nfixed = 0;
+  std::vector<Vec2> x = boundary_and_random(bg, 1500, 21, nfixed);
+  EnergySettings carry, rebuild;
+  rebuild.carry_metric_graph = false;
+  EnergyWorkspace wc(carry), wr(rebuild);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> U(-1, 1);
+  double worst_e = 0, worst_g = 0;
+  for (int step = 0; step < 4; ++step) {
+    const EnergyResult a = lp_energy(bg, x, 6, true, &wc, 1.0);
+    const EnergyResult b = lp_energy(bg, x, 6, true, &wr, 1.0);
+    worst_e = std::max(worst_e, std::abs(a.energy - b.energy) / b.energy);
+    double gmax = 0, dg = 0;
+    for (size_t i = 0; i < x.size(); ++i) {
+      gmax = std::max(gmax, b.grad[i].norm());
+      dg = std::max(dg, (a.grad[i] - b.grad[i]).norm());
+    }
+    worst_g = std::max(worst_g, dg / gmax);
+    CHECK(a.pieces == b.pieces);
+    // small moves of the free sites (0.3 % of the mean spacing, 0.065: random points make slivers)
+    for (size_t i = nfixed; i < x.size(); ++i) x[i] += 2e-4 * Vec2(U(rng), U(rng));
+  }
+  CHECK(wc.timers.carried >= 2);  // the graph was carried (and not only rebuilt)
+  CHECK(wr.timers.carried == 0);
+  CHECK(worst_e < 1e-12);
+  CHECK(worst_g < 1e-9);
+}
