@@ -343,9 +343,13 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
     EnergyWorkspace::Impl& W = *ws->impl;
     const bool metric = bg.metric_cells();
     // metric cells: the last evaluation's metric graph carried to the new sites by flips (no
-    // Euclidean Delaunay graph), else (a triangle would invert) rebuilt from the Euclidean one
-    const bool carry = metric && ws->settings.carry_metric_graph && W.mg && W.starts.size() == static_cast<size_t>(bg.num_cells()) &&
-                       update_metric_graph(bg, sites, *W.mg);
+    // Euclidean Delaunay graph), else (too many triangles would invert, or have been carried
+    // inverted since the last rebuild) rebuilt from the Euclidean one
+    const double frac = ws->settings.carry_inverted;
+    const long nt = W.mg ? static_cast<long>(W.mg->tris.size()) : 0;
+    const bool carry = metric && ws->settings.carry_metric_graph && W.mg &&
+                       W.starts.size() == static_cast<size_t>(bg.num_cells()) && W.mg->inverted <= 10 * frac * nt &&
+                       update_metric_graph(bg, sites, *W.mg, static_cast<int>(frac * nt));
     if (carry) {
       ++W.carried;
     } else if (!W.dt) {

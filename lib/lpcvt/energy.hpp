@@ -67,6 +67,8 @@ struct EnergySettings {
   bool carry_metric_graph = true;  ///< metric cells: carry the metric graph between evaluations by
                                    ///< flips (update_metric_graph) instead of rebuilding it from a
                                    ///< Euclidean Delaunay graph (changes the rounding only)
+  double carry_inverted = 1e-3;    ///< ... while at most this fraction of its triangles invert at
+                                   ///< an evaluation, and 10x that have since the last rebuild
   int min_parallel_sites = 2000;  ///< OpenMP from this many sites on (smaller problems lose more to
                                   ///< thread start-up than they gain); tests set 0 for the parallel path
 };

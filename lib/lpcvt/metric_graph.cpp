@@ -171,18 +171,22 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
   return flip_and_list(x, T, metric);
 }
 
-bool metric_delaunay_update(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric& metric) {
+bool metric_delaunay_update(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric& metric,
+                            int max_inverted) {
   if (g.num_sites() != static_cast<int>(x.size()) || g.tnb.size() != g.tris.size()) return false;
   const int nt = static_cast<int>(g.tris.size());
   std::vector<Tri> T(nt);
+  int inverted = 0;
   for (int t = 0; t < nt; ++t) {
     const std::array<int, 3>& v = g.tris[t];
-    // every triangle still counter-clockwise at the new positions (else the caller rebuilds)
-    if (!(cross2(x[v[1]] - x[v[0]], x[v[2]] - x[v[0]]) > 0)) return false;
+    // triangles no longer counter-clockwise at the new positions: more than allowed, rebuild
+    if (!(cross2(x[v[1]] - x[v[0]], x[v[2]] - x[v[0]]) > 0) && ++inverted > max_inverted) return false;
     T[t].v = v;
     T[t].nb = g.tnb[t];
   }
+  const long before = g.inverted;
   g = flip_and_list(x, T, metric);
+  g.inverted = before + inverted;
   return true;
 }
 

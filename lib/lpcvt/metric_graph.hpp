@@ -43,6 +43,7 @@ struct MetricGraph {
   std::vector<std::array<int, 3>> tnb;     ///< tnb[t][k]: the triangle across the edge opposite
                                            ///< tris[t][k] (-1: none), for metric_delaunay_update
   long flips = 0;                          ///< flips made
+  long inverted = 0;                       ///< inverted triangles carried (metric_delaunay_update)
   bool capped = false;                     ///< the flip cap was reached
   int num_sites() const { return static_cast<int>(ptr.size()) - 1; }
   const int* nbr_begin(int i) const { return adj.data() + ptr[i]; }
@@ -60,15 +61,19 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& sites, std::vector<std::arr
                             const EdgeMetric& metric);
 
 /// Carries `g` (a metric graph of these sites' earlier positions, e.g. the last energy
-/// evaluation's) to the positions `sites`: when every triangle of g is still counter-clockwise,
-/// Lawson flips by the same rule, from g's triangles instead of the Euclidean Delaunay
-/// triangulation, and true; else false and g unchanged (the caller rebuilds). Wherever the flip
-/// rule has one answer (a constant metric, no four sites co-circular in it) the result is the
-/// graph a rebuild gives; on co-circular quadrilaterals (within the 1e-9 tolerance, e.g. a
+/// evaluation's) to the positions `sites`: when at most `max_inverted` triangles of g are no
+/// longer counter-clockwise, Lawson flips by the same rule, from g's triangles instead of the
+/// Euclidean Delaunay triangulation, and true (g.inverted counts the inverted triangles carried
+/// so far); else false and g unchanged (the caller rebuilds). With no inverted triangle, wherever
+/// the flip rule has one answer (a constant metric, no four sites co-circular in it) the result
+/// is the graph a rebuild gives; on co-circular quadrilaterals (within the 1e-9 tolerance, e.g. a
 /// metric lattice's squares) the carried diagonal stays where a rebuild keeps the Euclidean one,
 /// and where the metric varies the flips' order (hence the result) differs from a rebuild's.
-/// Either graph serves the energy, whose pieces do not depend on it beyond rounding (rvd.hpp).
-bool metric_delaunay_update(const std::vector<Vec2>& sites, MetricGraph& g, const EdgeMetric& metric);
+/// An inverted triangle leaves a few wrong or missing neighbours near it. Any of these graphs
+/// serves the energy, whose pieces do not depend on the graph beyond rounding (rvd.hpp: every
+/// site within the security radius of what the neighbours leave clips the piece).
+bool metric_delaunay_update(const std::vector<Vec2>& sites, MetricGraph& g, const EdgeMetric& metric,
+                            int max_inverted = 0);
 
 /// In-circle test of d against the circle through a, b, c (CCW) in the metric M: > 0 inside.
 /// Depends on M^T M only (a reflection, det M < 0, gives the same answer). Scaled to be

@@ -114,9 +114,9 @@ MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& si
   return metric_delaunay(sites, std::move(tris), [&](const std::array<Vec2, 4>& q) { return m(q); });
 }
 
-bool update_metric_graph(const Background& bg, const std::vector<Vec2>& sites, MetricGraph& g) {
+bool update_metric_graph(const Background& bg, const std::vector<Vec2>& sites, MetricGraph& g, int max_inverted) {
   QuadMetric m{bg};
-  return metric_delaunay_update(sites, g, [&](const std::array<Vec2, 4>& q) { return m(q); });
+  return metric_delaunay_update(sites, g, [&](const std::array<Vec2, 4>& q) { return m(q); }, max_inverted);
 }
 
 MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,

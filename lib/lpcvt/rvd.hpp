@@ -120,8 +120,10 @@ MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& si
                                std::vector<std::array<int, 3>> tris);
 
 /// Carries the metric graph `g` of these sites' earlier positions to `sites` with the same flip
-/// metric (metric_delaunay_update); false, g unchanged, when a triangle would invert.
-bool update_metric_graph(const Background& bg, const std::vector<Vec2>& sites, MetricGraph& g);
+/// metric (metric_delaunay_update); false, g unchanged, when more than `max_inverted` triangles
+/// would invert.
+bool update_metric_graph(const Background& bg, const std::vector<Vec2>& sites, MetricGraph& g,
+                         int max_inverted = 0);
 
 /// The same, starting from the Delaunay triangulation `dt` (built with triangles).
 MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
