@@ -31,22 +31,18 @@ case $V in
   bamg-smooth)
     lpcvt -q "$F" -o "$d/tri.msh" --smooth 4 --gradation 0 --orientation frame --max-iterations 1 --max-cycles 1 --write-frame "$d/frame.msh"
     bamgquad -q "$d/frame.msh" -o "$d/mesh.msh" ;;
-  recombine*)
-    read -r -a a <<< "${V#recombine}"
-    read -r -a a <<< "${a[*]//_/ }"
-    lpcvt -q "$F" -o "$d/tri.msh"
-    recombine -q "$d/tri.msh" -o "$d/quad.msh" ${a[@]+"${a[@]}"}
-    quadsmooth -q "$d/quad.msh" --frame "$F" -o "$d/mesh.msh" ;;
-  fit-meshed)
-    lpcvt -q "$F" -o "$d/tri.msh" --write-frame "$d/frame.msh"
-    recombine -q "$d/tri.msh" -o "$d/quad.msh"
-    quadsmooth -q "$d/quad.msh" --frame "$d/frame.msh" -o "$d/mesh.msh" ;;
   *)
-    a=()
-    [ "$V" = base ] || read -r -a a <<< "${V//_/ }"
-    lpcvt -q "$F" -o "$d/tri.msh" ${a[@]+"${a[@]}"}
-    recombine -q "$d/tri.msh" -o "$d/quad.msh"
-    quadsmooth -q "$d/quad.msh" --frame "$F" -o "$d/mesh.msh" ;;
+    # the L_p-CVT chain: lpcvt options (lp), recombine options (rc), the frame quadsmooth fits (SF)
+    lp=() rc=() SF=$F
+    case $V in
+      base) ;;
+      recombine*) t=${V#recombine}; read -r -a rc <<< "${t//_/ }" ;;
+      fit-meshed) lp=(--write-frame "$d/frame.msh"); SF=$d/frame.msh ;;
+      *) read -r -a lp <<< "${V//_/ }" ;;
+    esac
+    lpcvt -q "$F" -o "$d/tri.msh" ${lp[@]+"${lp[@]}"}
+    recombine -q "$d/tri.msh" -o "$d/quad.msh" ${rc[@]+"${rc[@]}"}
+    quadsmooth -q "$d/quad.msh" --frame "$SF" -o "$d/mesh.msh" ;;
 esac
 dgsolve -q "$d/mesh.msh" -c "$C" -p "$P" -o "$d/sol.msh"
 case $S in
