@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
               q = std::stod(s);
             } catch (...) {
             }
-            return q == 0 || (q >= 1 && q <= 64) ? "" : s + " is neither 0 (the L_p exponent) nor in [1, 64]";
+            return LpcvtOptions::valid_boundary_norm(q) ? "" : s + " is neither 0 (the L_p exponent) nor in [1, 64]";
           },
           "0 or [1, 64]"));
   app.add_option("--scale", job.scale, "Metric scale: M_eff = scale * M, M in the quadapt convention (default 0.25; 1 for --analytic)");

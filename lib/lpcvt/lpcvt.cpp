@@ -63,7 +63,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
   groups.domain_name = bg.mesh().domain_name;
   groups.domain_tag = bg.mesh().domain_tag;
   groups.groups = bg.mesh().groups;
-  if (!(opt.boundary_norm == 0 || (opt.boundary_norm >= 1 && opt.boundary_norm <= 64)))
+  if (!LpcvtOptions::valid_boundary_norm(opt.boundary_norm))
     throw InputError("", "boundary_norm " + std::to_string(opt.boundary_norm) + " is neither 0 (the L_p exponent) nor in [1, 64]");
   const double q = opt.boundary_norm > 0 ? opt.boundary_norm : opt.p;
   auto boundary_of = [&](const Background& b) {

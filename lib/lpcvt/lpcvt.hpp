@@ -49,6 +49,8 @@ struct LpcvtOptions {
   /// q of the boundary points' metric length |M_eff tau|_q (boundary_points.hpp): 2 = the thesis's
   /// eq. 4.2; 0 = the energy's exponent p (frames' default: one wall point per lattice row).
   double boundary_norm = 2;
+  /// Whether q is a valid boundary_norm: 0 (the exponent p) or a norm's exponent in [1, 64].
+  static bool valid_boundary_norm(double q) { return q == 0 || (q >= 1 && q <= 64); }
   bool polish = true;           ///< minimise once more after the last split/merge if it changed points
   bool multilevel = false;      ///< multilevel start (above); the coarsest level uses seed_mode
   int coarse_points = 250;      ///< multilevel: interior points of the coarsest level, at least
