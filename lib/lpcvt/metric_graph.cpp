@@ -36,7 +36,25 @@ namespace {
 
 /// Lawson flips of the triangles T (with their adjacency) by the flip rule (header), then the
 /// neighbour lists; T's final state is kept in g (tris, tnb) for metric_delaunay_update.
-MetricGraph flip_and_list(const std::vector<Vec2>& x, std::vector<Tri>& T, const EdgeMetric& metric) {
+/// The flip rule's test of edge k of triangle t against its neighbour u = T[t].nb[k]: flip?
+/// (Without the "never re-made" rule and the cap, which the Lawson loop applies.)
+bool wants_flip(const std::vector<Vec2>& x, const std::vector<Tri>& T, int t, int k, const EdgeMetric& metric) {
+  const int u = T[t].nb[k];
+  if (u < 0) return false;
+  const int c = T[t].v[k], p = T[t].v[(k + 1) % 3], q = T[t].v[(k + 2) % 3];
+  const int l = index_of(T[u].nb, t);
+  if (T[u].nb[l] != t) return false;
+  const int d = T[u].v[l];
+  if (T[u].v[(l + 1) % 3] != q || T[u].v[(l + 2) % 3] != p) return false;
+  const Eigen::Matrix2d M = metric({x[c], x[p], x[d], x[q]});
+  if (!(metric_incircle(M, x[c], x[p], x[q], x[d]) > 1e-9)) return false;
+  // strictly convex quadrilateral c p d q: both new triangles positive (relative to size)
+  const double s = (x[d] - x[c]).squaredNorm();
+  return cross2(x[p] - x[c], x[d] - x[c]) > 1e-12 * s && cross2(x[d] - x[c], x[q] - x[c]) > 1e-12 * s;
+}
+
+MetricGraph flip_and_list(const std::vector<Vec2>& x, std::vector<Tri>& T, const EdgeMetric& metric,
+                          const EdgeMetricFactory& parallel_metric) {
   const int n = static_cast<int>(x.size());
   const int nt = static_cast<int>(T.size());
   MetricGraph g;
@@ -47,26 +65,37 @@ MetricGraph flip_and_list(const std::vector<Vec2>& x, std::vector<Tri>& T, const
   for (int t = nt - 1; t >= 0; --t)
     for (int k = 2; k >= 0; --k)
       if (T[t].nb[k] > t) stack.emplace_back(t, k);
+  // The first test of every edge, in parallel (fixed blocks: the same answers for any thread
+  // count); reused below while neither of the edge's triangles has been flipped.
+  const size_t ninit = stack.size();
+  std::vector<char> first;
+  if (parallel_metric) {
+    first.resize(ninit);
+    constexpr long kBlock = 4096;
+    const long nblocks = (static_cast<long>(ninit) + kBlock - 1) / kBlock;
+#pragma omp parallel for schedule(dynamic, 1) if (nblocks > 4)
+    for (long b = 0; b < nblocks; ++b) {
+      const EdgeMetric m = parallel_metric();
+      const size_t e = std::min(ninit, static_cast<size_t>((b + 1) * kBlock));
+      for (size_t i = static_cast<size_t>(b * kBlock); i < e; ++i)
+        first[i] = wants_flip(x, T, stack[i].first, stack[i].second, m);
+    }
+  }
+  std::vector<char> flipped(parallel_metric ? nt : 0, 0);
   const long cap = 20L * std::max(n, 1);
   auto edge_key = [n](int a, int b) { return static_cast<long long>(std::min(a, b)) * n + std::max(a, b); };
   std::unordered_set<long long> removed;
-  constexpr double tol = 1e-9;
   while (!stack.empty()) {
+    const size_t entry = stack.size() - 1;
     auto [t, k] = stack.back();
     stack.pop_back();
     const int u = T[t].nb[k];
     if (u < 0) continue;
+    const bool known = entry < ninit && !first.empty() && !flipped[t] && !flipped[u];
+    if (known ? !first[entry] : !wants_flip(x, T, t, k, metric)) continue;
     const int c = T[t].v[k], p = T[t].v[(k + 1) % 3], q = T[t].v[(k + 2) % 3];
     const int l = index_of(T[u].nb, t);
-    if (T[u].nb[l] != t) continue;
     const int d = T[u].v[l];
-    if (T[u].v[(l + 1) % 3] != q || T[u].v[(l + 2) % 3] != p) continue;  // stale entry
-    const Eigen::Matrix2d M = metric({x[c], x[p], x[d], x[q]});
-    if (!(metric_incircle(M, x[c], x[p], x[q], x[d]) > tol)) continue;
-    // strictly convex quadrilateral c p d q: both new triangles positive (relative to size)
-    const double s = (x[d] - x[c]).squaredNorm();
-    if (!(cross2(x[p] - x[c], x[d] - x[c]) > 1e-12 * s) || !(cross2(x[d] - x[c], x[q] - x[c]) > 1e-12 * s))
-      continue;
     // an edge removed by a flip is never made again: with a metric that varies, Lawson's flips
     // have no potential that decreases and can cycle (an S-shock frame, 1668 triangles: 39,680
     // flips until the cap); with a constant metric no removed edge is ever made again anyway
@@ -84,6 +113,7 @@ MetricGraph flip_and_list(const std::vector<Vec2>& x, std::vector<Tri>& T, const
     if (C >= 0) T[C].nb[index_of(T[C].nb, u)] = t;
     if (A >= 0) T[A].nb[index_of(T[A].nb, t)] = u;
     removed.insert(edge_key(p, q));
+    if (!flipped.empty()) flipped[t] = flipped[u] = 1;
     ++g.flips;
     // the four outer edges may now fail the test
     stack.emplace_back(t, 0);
@@ -138,7 +168,7 @@ MetricGraph flip_and_list(const std::vector<Vec2>& x, std::vector<Tri>& T, const
 }  // namespace
 
 MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<int, 3>> tris,
-                            const EdgeMetric& metric) {
+                            const EdgeMetric& metric, const EdgeMetricFactory& parallel_metric) {
   const int n = static_cast<int>(x.size());
   const int nt = static_cast<int>(tris.size());
   std::vector<Tri> T(nt);
@@ -168,11 +198,11 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
           }
       }
   }
-  return flip_and_list(x, T, metric);
+  return flip_and_list(x, T, metric, parallel_metric);
 }
 
 bool metric_delaunay_update(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric& metric,
-                            int max_inverted) {
+                            int max_inverted, const EdgeMetricFactory& parallel_metric) {
   if (g.num_sites() != static_cast<int>(x.size()) || g.tnb.size() != g.tris.size()) return false;
   const int nt = static_cast<int>(g.tris.size());
   std::vector<Tri> T(nt);
@@ -185,7 +215,7 @@ bool metric_delaunay_update(const std::vector<Vec2>& x, MetricGraph& g, const Ed
     T[t].nb = g.tnb[t];
   }
   const long before = g.inverted;
-  g = flip_and_list(x, T, metric);
+  g = flip_and_list(x, T, metric, parallel_metric);
   g.inverted = before + inverted;
   return true;
 }

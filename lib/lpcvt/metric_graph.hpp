@@ -55,10 +55,17 @@ struct MetricGraph {
 /// never flip there.
 using EdgeMetric = std::function<Eigen::Matrix2d(const std::array<Vec2, 4>& corners)>;
 
+/// Makes independent EdgeMetric objects (each may keep state, e.g. a point-location hint) that
+/// give the same answers as the serial one: with it, the first in-circle test of every edge is
+/// made in parallel (OpenMP, fixed blocks of edges, one metric per block), and the serial Lawson
+/// loop reuses those answers for edges whose two triangles no flip has touched. The result does
+/// not depend on the thread count.
+using EdgeMetricFactory = std::function<EdgeMetric()>;
+
 /// Lawson flips of the triangulation `tris` (CCW triangles over `sites`, e.g. the Euclidean
 /// Delaunay triangulation) by the metric in-circle test, then the neighbour lists.
 MetricGraph metric_delaunay(const std::vector<Vec2>& sites, std::vector<std::array<int, 3>> tris,
-                            const EdgeMetric& metric);
+                            const EdgeMetric& metric, const EdgeMetricFactory& parallel_metric = {});
 
 /// Carries `g` (a metric graph of these sites' earlier positions, e.g. the last energy
 /// evaluation's) to the positions `sites`: when at most `max_inverted` triangles of g are no
@@ -73,7 +80,7 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& sites, std::vector<std::arr
 /// serves the energy, whose pieces do not depend on the graph beyond rounding (rvd.hpp: every
 /// site within the security radius of what the neighbours leave clips the piece).
 bool metric_delaunay_update(const std::vector<Vec2>& sites, MetricGraph& g, const EdgeMetric& metric,
-                            int max_inverted = 0);
+                            int max_inverted = 0, const EdgeMetricFactory& parallel_metric = {});
 
 /// In-circle test of d against the circle through a, b, c (CCW) in the metric M: > 0 inside.
 /// Depends on M^T M only (a reflection, det M < 0, gives the same answer). Scaled to be

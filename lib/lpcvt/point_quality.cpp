@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
 #include "lpcvt/delaunay.hpp"
 #include "lpcvt/rvd.hpp"
 
@@ -56,39 +58,64 @@ AngleStats triangle_angles(const Background& bg, const Mesh& tri, bool metric) {
   return s;
 }
 
-AlignmentStats voronoi_alignment(const Background& bg, const std::vector<Vec2>& sites, int from,
-                                 bool principal) {
-  AlignmentStats s;
+std::array<AlignmentStats, 2> voronoi_alignments(const Background& bg, const std::vector<Vec2>& sites, int from) {
   RestrictedVoronoi rvd(bg, sites);
-  double wsum = 0, dsum = 0, within = 0;
-  for (const RvdPiece& pc : rvd.all_pieces()) {
-    if (pc.site < from) continue;
-    const int m = static_cast<int>(pc.v.size());
-    for (int k = 0; k < m; ++k) {
-      if (pc.label[k] < 0) continue;
-      Vec2 u = pc.v[(k + 1) % m] - pc.v[k];
-      Vec2 mid = 0.5 * (pc.v[(k + 1) % m] + pc.v[k]);
-      const Mat2 M = bg.metric(pc.cell, mid);
-      Vec2 w = M * u;
-      double len = w.norm();
-      if (len <= 0) continue;
-      if (principal) {  // u in the eigenbasis of M^T M
+  const int nq = bg.num_cells();
+  // per cell and kind (0: metric axes, 1: principal directions): weight, weighted deviation,
+  // weight within 10 degrees, edges
+  std::vector<std::array<double, 8>> acc(nq);
+  const int nthreads = std::max(1, omp_get_max_threads());
+  std::vector<RvdWorkspace> ws(nthreads);
+  std::vector<std::vector<RvdPiece>> pieces(nthreads);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(nthreads) if (nq >= 256 && sites.size() >= 2000)
+  for (int q = 0; q < nq; ++q) {
+    const int t = omp_get_thread_num();
+    const int np = rvd.pieces(q, pieces[t], ws[t]);
+    std::array<double, 8> a{};
+    for (int k = 0; k < np; ++k) {
+      const RvdPiece& pc = pieces[t][k];
+      if (pc.site < from) continue;
+      const int m = static_cast<int>(pc.v.size());
+      for (int e = 0; e < m; ++e) {
+        if (pc.label[e] < 0) continue;
+        const Vec2 u = pc.v[(e + 1) % m] - pc.v[e];
+        const Vec2 mid = 0.5 * (pc.v[(e + 1) % m] + pc.v[e]);
+        const Mat2 M = bg.metric(pc.cell, mid);
+        const Vec2 w = M * u;
+        const double len = w.norm();
+        if (len <= 0) continue;
         Eigen::SelfAdjointEigenSolver<Mat2> es(M.transpose() * M);
-        w = es.eigenvectors().transpose() * u;
+        const Vec2 wp = es.eigenvectors().transpose() * u;  // u in the eigenbasis of M^T M
+        for (int kind = 0; kind < 2; ++kind) {
+          const Vec2& d = kind == 0 ? w : wp;
+          const double ang = std::atan2(std::abs(d.y()), std::abs(d.x())) * 180.0 / M_PI;
+          const double dev = std::min(ang, 90 - ang);
+          a[4 * kind] += len;
+          a[4 * kind + 1] += len * dev;
+          if (dev <= 10) a[4 * kind + 2] += len;
+          a[4 * kind + 3] += 1;
+        }
       }
-      double a = std::atan2(std::abs(w.y()), std::abs(w.x())) * 180.0 / M_PI;
-      double dev = std::min(a, 90 - a);
-      wsum += len;
-      dsum += len * dev;
-      if (dev <= 10) within += len;
-      ++s.edges;
+    }
+    acc[q] = a;
+  }
+  std::array<double, 8> tot{};
+  for (int q = 0; q < nq; ++q)
+    for (int k = 0; k < 8; ++k) tot[k] += acc[q][k];
+  std::array<AlignmentStats, 2> s;
+  for (int kind = 0; kind < 2; ++kind) {
+    s[kind].edges = static_cast<int>(tot[4 * kind + 3]);
+    if (tot[4 * kind] > 0) {
+      s[kind].mean_deviation = tot[4 * kind + 1] / tot[4 * kind];
+      s[kind].frac_within_10 = tot[4 * kind + 2] / tot[4 * kind];
     }
   }
-  if (wsum > 0) {
-    s.mean_deviation = dsum / wsum;
-    s.frac_within_10 = within / wsum;
-  }
   return s;
+}
+
+AlignmentStats voronoi_alignment(const Background& bg, const std::vector<Vec2>& sites, int from,
+                                 bool principal) {
+  return voronoi_alignments(bg, sites, from)[principal ? 1 : 0];
 }
 
 std::vector<int> valence_histogram(const std::vector<Vec2>& sites, int from) {

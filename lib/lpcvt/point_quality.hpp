@@ -4,8 +4,10 @@
 // right isosceles triangle, half of a unit square), the alignment of the clipped Voronoi cells
 // with the metric axes, Delaunay valences, and a JSON dump of the clipped Voronoi diagram for
 // pictures.
-#include <nlohmann/json.hpp>
+#include <array>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "lpcvt/background.hpp"
 
@@ -37,6 +39,10 @@ struct AlignmentStats {
 ///    directions of the metric ellipse, which rectangular Voronoi cells can follow).
 AlignmentStats voronoi_alignment(const Background& bg, const std::vector<Vec2>& sites, int from = 0,
                                  bool principal = false);
+/// Both of the above ({axes, principal}) from one restricted Voronoi diagram, its pieces made in
+/// parallel over the background cells (sums per cell, added in cell order: the figures do not
+/// depend on the thread count).
+std::array<AlignmentStats, 2> voronoi_alignments(const Background& bg, const std::vector<Vec2>& sites, int from = 0);
 
 /// Valence (number of Delaunay neighbours) histogram of sites[from..], index = valence.
 std::vector<int> valence_histogram(const std::vector<Vec2>& sites, int from = 0);

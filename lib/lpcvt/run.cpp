@@ -184,8 +184,8 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
   rep["largest_angle_metric_80_100"] = am.frac_largest_80_100;
   rep["largest_angle_median"] = ap.median_largest;
   rep["largest_angle_80_100"] = ap.frac_largest_80_100;
-  const AlignmentStats al = voronoi_alignment(bg, r.sites, r.nfixed);
-  const AlignmentStats alp = voronoi_alignment(bg, r.sites, r.nfixed, true);
+  const std::array<AlignmentStats, 2> als = voronoi_alignments(bg, r.sites, r.nfixed);
+  const AlignmentStats &al = als[0], &alp = als[1];
   rep["voronoi_alignment_mean_deg"] = al.mean_deviation;
   rep["voronoi_principal_alignment_mean_deg"] = alp.mean_deviation;
   say(log, "largest triangle angles (median): " + sci(am.median_largest) + " deg in the metric, " +

@@ -106,17 +106,23 @@ struct QuadMetric {
     return bg.cell(c).M;
   }
 };
+/// Independent QuadMetric objects (own hints) for the parallel first tests of the flips.
+EdgeMetricFactory quad_metrics(const Background& bg) {
+  return [&bg]() -> EdgeMetric { return QuadMetric{bg}; };
+}
 }  // namespace
 
 MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,
                                std::vector<std::array<int, 3>> tris) {
   QuadMetric m{bg};
-  return metric_delaunay(sites, std::move(tris), [&](const std::array<Vec2, 4>& q) { return m(q); });
+  return metric_delaunay(sites, std::move(tris), [&](const std::array<Vec2, 4>& q) { return m(q); },
+                         quad_metrics(bg));
 }
 
 bool update_metric_graph(const Background& bg, const std::vector<Vec2>& sites, MetricGraph& g, int max_inverted) {
   QuadMetric m{bg};
-  return metric_delaunay_update(sites, g, [&](const std::array<Vec2, 4>& q) { return m(q); }, max_inverted);
+  return metric_delaunay_update(sites, g, [&](const std::array<Vec2, 4>& q) { return m(q); }, max_inverted,
+                                quad_metrics(bg));
 }
 
 MetricGraph build_metric_graph(const Background& bg, const std::vector<Vec2>& sites,

@@ -2,13 +2,21 @@
 
 #include <algorithm>
 
+#include <omp.h>
+
 namespace quadapt::lpcvt {
 
 SiteTree::SiteTree(const std::vector<Vec2>& sites) : idx_(sites.size()) {
   for (size_t i = 0; i < sites.size(); ++i) idx_[i] = static_cast<int>(i);
-  build(sites, 0, static_cast<int>(idx_.size()), 0);
+  // the two halves of a split are independent: the top levels' halves as OpenMP tasks (the tree
+  // is the same for any thread count)
+  const int n = static_cast<int>(idx_.size());
+#pragma omp parallel if (n >= kParallelSites && !omp_in_parallel())
+#pragma omp single
+  build(sites, 0, n, 0);
   p_.resize(idx_.size());
-  for (size_t k = 0; k < idx_.size(); ++k) p_[k] = sites[idx_[k]];
+#pragma omp parallel for schedule(static) if (n >= kParallelSites && !omp_in_parallel())
+  for (int k = 0; k < n; ++k) p_[k] = sites[idx_[k]];
 }
 
 void SiteTree::build(const std::vector<Vec2>& x, int b, int e, int depth) {
@@ -17,8 +25,15 @@ void SiteTree::build(const std::vector<Vec2>& x, int b, int e, int depth) {
   std::nth_element(idx_.begin() + b, idx_.begin() + m, idx_.begin() + e, [&](int i, int j) {
     return x[i][a] != x[j][a] ? x[i][a] < x[j][a] : i < j;
   });
-  build(x, b, m, depth + 1);
-  build(x, m + 1, e, depth + 1);
+  if (e - b >= kParallelSites) {
+#pragma omp task default(shared) firstprivate(b, m, depth)
+    build(x, b, m, depth + 1);
+    build(x, m + 1, e, depth + 1);
+#pragma omp taskwait
+  } else {
+    build(x, b, m, depth + 1);
+    build(x, m + 1, e, depth + 1);
+  }
 }
 
 void SiteTree::query(const Vec2& lo, const Vec2& hi, std::vector<int>& out) const {

@@ -18,6 +18,7 @@ class SiteTree {
   void query(const Vec2& lo, const Vec2& hi, std::vector<int>& out) const;
 
  private:
+  static constexpr int kParallelSites = 16384;  ///< subtrees at least this large: built as OpenMP tasks
   std::vector<int> idx_;  ///< the sites, arranged as an implicit tree over [0, n)
   std::vector<Vec2> p_;   ///< their positions in the same order (contiguous: the queries read only these)
   void build(const std::vector<Vec2>& x, int b, int e, int depth);

@@ -8,6 +8,8 @@
 #include <random>
 #include <string>
 
+#include <omp.h>
+
 #include "helpers.hpp"
 #include "lpcvt/boundary_points.hpp"
 #include "lpcvt/delaunay.hpp"
@@ -17,6 +19,7 @@
 #include "lpcvt/metric_filter.hpp"
 #include "lpcvt/multilevel.hpp"
 #include "lpcvt/point_quality.hpp"
+#include "lpcvt/rvd.hpp"
 #include "lpcvt/split_merge.hpp"
 #include "lpcvt/triangulate.hpp"
 #include "mesh/topology.hpp"
@@ -286,4 +289,46 @@ TEST_CASE("non-convex domains with the frame defaults (lattice start, weighted e
                                                         << r.mesh.num_cells() << " triangles, " << r.cycles.size()
                                                         << " cycles");
   }
+}
+
+TEST_CASE("voronoi_alignments: both figures from one diagram, the same for 1 and 2 threads and as a serial sum") {
+  // 400 background cells and 3,000 sites: large enough for the parallel pieces
+  Mesh m = saddle_square(20);
+  set_frame(m, 0.05, 0.01, 0.4);
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  bg.set_metric_cells(true);
+  int nfixed = 0;
+  const std::vector<Vec2> x = boundary_and_random(bg, 3000, 3, nfixed);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const std::array<AlignmentStats, 2> one = voronoi_alignments(bg, x, nfixed);
+  omp_set_num_threads(2);
+  const std::array<AlignmentStats, 2> two = voronoi_alignments(bg, x, nfixed);
+  omp_set_num_threads(threads);
+  for (int k = 0; k < 2; ++k) {
+    CHECK(one[k].mean_deviation == two[k].mean_deviation);  // bit for bit
+    CHECK(one[k].frac_within_10 == two[k].frac_within_10);
+    CHECK(one[k].edges == two[k].edges);
+  }
+  // the definition, summed serially over the pieces: the metric axes' deviation
+  const RestrictedVoronoi rvd(bg, x);
+  double w = 0, d = 0;
+  int edges = 0;
+  for (const RvdPiece& pc : rvd.all_pieces()) {
+    if (pc.site < nfixed) continue;
+    const int n = static_cast<int>(pc.v.size());
+    for (int e = 0; e < n; ++e) {
+      if (pc.label[e] < 0) continue;
+      const Vec2 u = bg.metric(pc.cell, 0.5 * (pc.v[e] + pc.v[(e + 1) % n])) * (pc.v[(e + 1) % n] - pc.v[e]);
+      if (!(u.norm() > 0)) continue;
+      const double a = std::atan2(std::abs(u.y()), std::abs(u.x())) * 180 / M_PI;
+      w += u.norm();
+      d += u.norm() * std::min(a, 90 - a);
+      ++edges;
+    }
+  }
+  CHECK(one[0].edges == edges);
+  CHECK(one[0].mean_deviation == doctest::Approx(d / w).epsilon(1e-12));
+  CHECK(one[0].mean_deviation > 5);  // random sites: far from aligned (the figure is not trivially 0)
+  CHECK(voronoi_alignment(bg, x, nfixed, true).mean_deviation == one[1].mean_deviation);
 }

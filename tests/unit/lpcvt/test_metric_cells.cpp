@@ -7,6 +7,8 @@
 #include <cmath>
 #include <random>
 
+#include <omp.h>
+
 #include "helpers.hpp"
 #include "lpcvt/boundary_points.hpp"
 #include "lpcvt/energy.hpp"
@@ -216,6 +218,30 @@ TEST_CASE("site tree: a box query lists its sites in one fixed order, a larger b
     CHECK(filtered == small);
     std::sort(small.begin(), small.end());
     CHECK(small == brute);
+  }
+}
+
+TEST_CASE("site tree: built in parallel (subtrees as tasks), the same answers for 1 and 2 threads") {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec2> x(60000);  // above the task threshold (16,384 sites) at the top two levels
+  for (auto& p : x) p = Vec2(u(rng), u(rng) * u(rng));
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const SiteTree one(x);
+  omp_set_num_threads(2);
+  const SiteTree two(x);
+  omp_set_num_threads(threads);
+  for (int k = 0; k < 100; ++k) {
+    const Vec2 c(u(rng), 0.3 * u(rng)), e(0.02 * u(rng), 0.01 * u(rng));
+    std::vector<int> a, b, brute;
+    one.query(c - e, c + e, a);
+    two.query(c - e, c + e, b);
+    CHECK(a == b);  // same sites in the same (pre-)order
+    for (int i = 0; i < static_cast<int>(x.size()); ++i)
+      if (std::abs(x[i].x() - c.x()) <= e.x() && std::abs(x[i].y() - c.y()) <= e.y()) brute.push_back(i);
+    std::sort(a.begin(), a.end());
+    CHECK(a == brute);
   }
 }
 

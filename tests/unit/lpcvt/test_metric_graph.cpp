@@ -8,6 +8,8 @@
 #include <cmath>
 #include <random>
 
+#include <omp.h>
+
 #include "helpers.hpp"
 #include "lpcvt/delaunay.hpp"
 #include "lpcvt/energy.hpp"
@@ -150,4 +152,61 @@ TEST_CASE("energy with a carried graph that has inverted triangles: still the ex
     dg = std::max(dg, (a.grad[i] - b.grad[i]).norm());
   }
   CHECK(dg < 1e-9 * gmax);
+}
+
+namespace {
+
+/// A metric whose axes turn with position (5:1, 1.5 turns across the square), with a hint like
+/// the background's point location: a stateful EdgeMetric, as the parallel tests must allow.
+struct TurningMetric {
+  int calls = 0;
+  Mat2 operator()(const std::array<Vec2, 4>& q) {
+    ++calls;
+    const Vec2 c = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    return rotated_metric(0.05, 0.01, 3 * M_PI * (c.x() + 0.5 * c.y()));
+  }
+};
+
+std::vector<Vec2> many_points(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(0, 1);
+  std::vector<Vec2> x = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  for (int i = 0; i < n; ++i) x.emplace_back(U(rng), U(rng));
+  return x;
+}
+
+}  // namespace
+
+TEST_CASE("metric graph: the parallel first tests give the serial loop's graph, for any thread count") {
+  // 8,000 sites: ~24,000 interior edges, 6 blocks of first tests (the parallel pass needs > 4)
+  const std::vector<Vec2> x0 = many_points(8000, 11);
+  const DelaunayGraph dt(x0, true, false);
+  TurningMetric serial_m;
+  const MetricGraph ref = metric_delaunay(x0, dt.triangles(), [&](const std::array<Vec2, 4>& q) { return serial_m(q); });
+  REQUIRE(ref.flips > 1000);  // the turning metric flips a good part of the Euclidean edges
+  const EdgeMetricFactory factory = [] { return EdgeMetric(TurningMetric{}); };
+  const int threads = omp_get_max_threads();
+  for (int nt : {1, 2}) {
+    omp_set_num_threads(nt);
+    TurningMetric m;
+    const MetricGraph g =
+        metric_delaunay(x0, dt.triangles(), [&](const std::array<Vec2, 4>& q) { return m(q); }, factory);
+    CHECK(g.flips == ref.flips);
+    CHECK(g.tris == ref.tris);
+    CHECK(g.adj == ref.adj);
+    CHECK(m.calls < serial_m.calls);  // the serial loop reused some of the parallel answers
+    // carried to moved sites: again the serial loop's graph
+    std::vector<Vec2> x1 = x0;
+    for (size_t i = 4; i < x1.size(); ++i) x1[i] += 2e-4 * Vec2(std::sin(37.0 * i), std::cos(53.0 * i));
+    MetricGraph a = ref, b = g;
+    TurningMetric ma, mb;
+    const bool oka = metric_delaunay_update(x1, a, [&](const std::array<Vec2, 4>& q) { return ma(q); }, 1000);
+    const bool okb = metric_delaunay_update(x1, b, [&](const std::array<Vec2, 4>& q) { return mb(q); }, 1000, factory);
+    REQUIRE(oka == okb);
+    CHECK(a.flips == b.flips);
+    CHECK(a.tris == b.tris);
+    CHECK(a.adj == b.adj);
+    CHECK(mb.calls < ma.calls / 4);  // few flips after a small move: the serial loop tests little
+  }
+  omp_set_num_threads(threads);
 }
