@@ -4,7 +4,7 @@
 #   run-loop.sh --case CASE.json --mesh START.msh --p P --method lpcvt|bamg|fixed-fraction|uniform
 #               --mode feature|goal --steps N --growth G --out DIR
 #               [--maxdofs N] [--fraction F] [--ff-by FIELD] [--seed S] [--smooth-bamg yes|no]
-#               [--max-anisotropy A] [--start-jitter J]
+#               [--max-anisotropy A] [--start-jitter J] [--fit-frame raw|meshed]
 #               [--pictures yes|no] [--window x0,x1,y0,y1] [--thesis-case KEY] [--check-only]
 #
 # Every input is checked, and every tool the method needs is looked up, BEFORE any work starts.
@@ -36,6 +36,7 @@ CASE="" MESH="" P="" METHOD="" MODE="" STEPS="6" GROWTH="1.5" OUT="" MAXDOFS="0"
 SEED="1" JITTER="0" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0 GEOMETRY="" ORDER=""
 MAX_ANISO=""  # size-solve --max-anisotropy; empty = its default (25)
 START_JITTER="0"  # > 0: the start mesh's interior nodes moved at random from SEED (meshconvert --jitter)
+FIT_FRAME="raw"   # lpcvt: quadsmooth fits size-solve's frame (raw) or the one lpcvt meshed (meshed: --write-frame)
 while [ $# -gt 0 ]; do
   opt="$1"
   case "$opt" in
@@ -50,7 +51,7 @@ while [ $# -gt 0 ]; do
     --seed) SEED="$val" ;; --jitter) JITTER="$val" ;; --smooth-bamg) SMOOTH_BAMG="$val" ;; --pictures) PICTURES="$val" ;;
     --window) WINDOW="$val" ;; --thesis-case) THESIS_KEY="$val" ;;
     --geometry) GEOMETRY="$val" ;; --order) ORDER="$val" ;; --max-anisotropy) MAX_ANISO="$val" ;;
-    --start-jitter) START_JITTER="$val" ;;
+    --start-jitter) START_JITTER="$val" ;; --fit-frame) FIT_FRAME="$val" ;;
     *) die "unknown option $opt (see docs/loop.md)" ;;
   esac
 done
@@ -96,6 +97,7 @@ is_num "$START_JITTER" && "$PY" -c "import sys; sys.exit(0 if float('$START_JITT
 [ -n "$OUT" ] || die "OUT is not set (the run directory)"
 case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
+case "$FIT_FRAME" in raw|meshed) ;; *) die "FIT_FRAME='$FIT_FRAME': use raw (size-solve's frame) or meshed (the frame lpcvt meshed)" ;; esac
 if [ -n "$GEOMETRY" ]; then  # the true geometry (docs/curved.md): meshes snapped to it, cells of order ORDER
   [ -f "$GEOMETRY" ] || die "GEOMETRY '$GEOMETRY': no such file"
   GEOMETRY="$(cd "$(dirname "$GEOMETRY")" && pwd)/$(basename "$GEOMETRY")"
@@ -163,10 +165,12 @@ jit=()  # JITTER joins the run's parameters only when used (older runs have none
 [ "$JITTER" = 0 ] || jit=(jitter="$JITTER")
 sjit=()
 [ "$START_JITTER" = 0 ] || sjit=(start_jitter="$START_JITTER")
+fitf=()  # likewise FIT_FRAME, only when not the default
+[ "$FIT_FRAME" = raw ] || fitf=(fit_frame="$FIT_FRAME")
 msg="$(ctl params "$OUT/loop.json" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
   method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" ${jit[@]+"${jit[@]}"} \
   smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} \
-  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} 2>&1)" || die "$msg"
+  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} 2>&1)" || die "$msg"
 
 name="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
 say() { echo "[$name] $*"; }
@@ -345,12 +349,17 @@ while :; do
           size-solve "$d/shape.msh" --growth "$GROWTH" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} -o "$d/frame.msh"
       fi
       if [ "$METHOD" = lpcvt ]; then
-        run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED" --jitter "$JITTER" ${geo[@]+"${geo[@]}"}
+        fit="$d/frame.msh" wf=()
+        if [ "$FIT_FRAME" = meshed ]; then  # quadsmooth fits the frame lpcvt meshed (after its filters)
+          fit="$d/meshed-frame.msh" wf=(--write-frame "$fit")
+          [ -f "$fit" ] || rm -f "$d/tri.msh"  # a resumed step without it: lpcvt again
+        fi
+        run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED" --jitter "$JITTER" ${wf[@]+"${wf[@]}"} ${geo[@]+"${geo[@]}"}
         # the tools' defaults: recombine matches in the metric of the frame lpcvt attached to
         # tri.msh (no node moves; docs/recombine.md)
         run_tool "$d" recombine "$d/quad.msh" "$d/tri.msh" -- recombine "$d/tri.msh" -o "$d/quad.msh"
-        run_tool "$d" quadsmooth "$d/adapted.msh" "$d/quad.msh" "$d/frame.msh" -- \
-          quadsmooth "$d/quad.msh" -o "$d/adapted.msh" --frame "$d/frame.msh"
+        run_tool "$d" quadsmooth "$d/adapted.msh" "$d/quad.msh" "$fit" -- \
+          quadsmooth "$d/quad.msh" -o "$d/adapted.msh" --frame "$fit"
       else
         run_tool "$d" bamgquad "$d/quad.msh" "$d/frame.msh" -- bamgquad "$d/frame.msh" -o "$d/quad.msh" ${geo[@]+"${geo[@]}"}
         if [ "$SMOOTH_BAMG" = yes ]; then

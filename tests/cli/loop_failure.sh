@@ -60,6 +60,9 @@ grep -q "MAX_ANISOTROPY='0.5': must be a number >= 1" log4b || fail "MAX_ANISOTR
 rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --start-jitter 0.5 --out run-bad > log4c 2>&1 || rc=$?
 [ $rc -eq 2 ] && grep -q "START_JITTER='0.5'" log4c || fail "START_JITTER 0.5: exit $rc, $(cat log4c)"
 [ ! -e run-bad ] || fail "bad START_JITTER created the run directory"
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --fit-frame smooth --out run-bad > log4d 2>&1 || rc=$?
+[ $rc -eq 2 ] && grep -q "FIT_FRAME='smooth': use raw" log4d || fail "FIT_FRAME smooth: exit $rc, $(cat log4d)"
+[ ! -e run-bad ] || fail "bad FIT_FRAME created the run directory"
 
 # --- resume with a working refine: step-0 is not redone (same bytes, same times), the loop ends with 0
 sleep 1.1  # a recomputed file would get a later modification time

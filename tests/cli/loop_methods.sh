@@ -74,4 +74,22 @@ if [ -d "$T/lpcvt-feature/step-0" ]; then
     grep -q "step-0: $t " "$T/resume.log" && fail "resume: step-0 $t rerun"
   done
 fi
+# FIT_FRAME=meshed: quadsmooth fits the frame lpcvt wrote (meshed-frame.msh), recorded in the run's
+# parameters, so the same OUT with the default is refused
+out="$T/lpcvt-fit"
+make --no-print-directory -f "$SRC/Makefile.cases" loop BIN="$BIN" CASE="$SRC/examples/cases/smooth.json" \
+  MESH="$T/sq8.msh" P=1 METHOD=lpcvt MODE=feature STEPS=1 OUT="$out" PICTURES=no FIT_FRAME=meshed > "$out.log" 2>&1 \
+  || { cat "$out.log" >&2; fail "FIT_FRAME=meshed loop failed"; }
+[ -s "$out/step-0/meshed-frame.msh" ] || fail "FIT_FRAME=meshed: no meshed-frame.msh"
+"$PY" - "$out/step-0/adapted.json" "$out/loop.json" <<'PYEOF' || fail "FIT_FRAME=meshed: quadsmooth's frame"
+import json, sys
+rep, loop = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+assert rep["command"].endswith("--frame " + sys.argv[1].replace("adapted.json", "meshed-frame.msh")), rep["command"]
+assert json.dumps(loop).count('"fit_frame": "meshed"') == 1, loop
+PYEOF
+rc=0
+make --no-print-directory -f "$SRC/Makefile.cases" loop BIN="$BIN" CASE="$SRC/examples/cases/smooth.json" \
+  MESH="$T/sq8.msh" P=1 METHOD=lpcvt MODE=feature STEPS=1 OUT="$out" PICTURES=no > "$out-raw.log" 2>&1 || rc=$?
+[ $rc -ne 0 ] && grep -q "fit_frame" "$out-raw.log" || fail "FIT_FRAME changed on the same OUT: exit $rc, $(cat "$out-raw.log")"
+ran=$((ran + 1))
 echo "loop methods CLI: $ran loops checked"
