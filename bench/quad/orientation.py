@@ -8,7 +8,10 @@ and, with --bamg, bamgquad FRAME -o MESH. Figures from meshquality --frame (each
 at its centroid): mean |corner angle - 90| in the metric, minimum metric scaled Jacobian, share of
 edges with metric length in [1/sqrt2, sqrt2], share of interior vertices of valence != 4, cells
 against the frame's 1000. 'corner bound': sin of the smallest corner angle of the domain in the
-metric, the largest minimum scaled Jacobian any all-quad mesh of the square can have.
+metric, the largest minimum scaled Jacobian any all-quad mesh of the square can have (a quad at a
+corner has the corner's angle); 'min SJ beyond 2 / 4': the same minimum over the quads whose centroid is more than 2 / 4 target
+edges (in the metric) from every corner of the square (computed here from the mesh; exact for a
+constant frame).
 
   orientation.py BIN OUT [--angles 0 15 ...] [--stretches 1 5 ...] [--bamg] [--jobs 2]
 """
@@ -17,6 +20,32 @@ from concurrent.futures import ThreadPoolExecutor
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 FRAME_PY = os.path.join(HERE, "..", "..", "tests", "cli", "lpcvt_frame.py")
+sys.path.insert(0, os.path.join(HERE, "..", "..", "tests", "cli"))
+from golden_compare import read_msh  # noqa: E402
+
+
+def min_sj_from_corners(path, M, distances=(0, 2, 4)):
+    """{d: minimum metric scaled Jacobian over the quads of `path` whose centroid is more than d
+    target edges (|M x| / 2, the frame's half-axes convention) from every corner of the unit
+    square}; M the constant metric (2x2 rows). Corner k of a quad: cross(M e1, M e2) /
+    (|M e1| |M e2|), e1, e2 its two edges from that corner (meshquality's definition; for d = 0 its
+    'scaled_jacobian_min')."""
+    m = read_msh(path)
+    mp = [(M[0][0] * p[0] + M[0][1] * p[1], M[1][0] * p[0] + M[1][1] * p[1]) for p in m["nodes"]]
+    corners = [(M[0][0] * x + M[0][1] * y, M[1][0] * x + M[1][1] * y) for x, y in ((0, 0), (1, 0), (1, 1), (0, 1))]
+    best = {d: 1.0 for d in distances}
+    for q in m["elements"].get(3, []):
+        cx, cy = sum(mp[v][0] for v in q) / 4, sum(mp[v][1] for v in q) / 4
+        dc = min(math.hypot(cx - c[0], cy - c[1]) for c in corners) / 2
+        sj = 1.0
+        for k in range(4):
+            a, b, c = mp[q[k]], mp[q[(k + 1) % 4]], mp[q[(k - 1) % 4]]
+            e1 = (b[0] - a[0], b[1] - a[1]); e2 = (c[0] - a[0], c[1] - a[1])
+            sj = min(sj, (e1[0] * e2[1] - e1[1] * e2[0]) / (math.hypot(*e1) * math.hypot(*e2)))
+        for d in distances:
+            if dc > d:
+                best[d] = min(best[d], sj)
+    return best
 
 
 def corner_bound(h1, h2, a):
@@ -57,7 +86,11 @@ def one(binp, out, a_deg, s, bamg):
                          target=d["frame"]["continuous_complexity"],
                          dev=me["quad_angle_deviation_mean_deg"], min_sj=me["scaled_jacobian_min"],
                          in_band=me["edge_length"]["share_in_range"], irregular=d["irregular_interior_share"],
-                         bound=corner_bound(h1, h2, a)))
+                         bound=corner_bound(h1, h2, a),
+                         min_sj_beyond=min_sj_from_corners(m, [[math.cos(a) / h1, math.sin(a) / h1],
+                                                               [-math.sin(a) / h2, math.cos(a) / h2]])))
+        # the same definition as meshquality's: over all quads the same minimum
+        assert abs(rows[-1]["min_sj_beyond"][0] - rows[-1]["min_sj"]) < 1e-9, (tag, path, rows[-1])
     return rows
 
 
@@ -75,10 +108,10 @@ def main():
         res = list(ex.map(lambda j: one(a.bin, a.out, j[0], j[1], a.bamg), jobs))
     rows = [r for rr in res for r in rr]
     json.dump(rows, open(os.path.join(a.out, "orientation.json"), "w"), indent=1)
-    print("| angle | stretch | path | mean metric angle dev. (deg) | min metric SJ | corner bound | edges in band | irregular | cells / target |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| angle | stretch | path | mean metric angle dev. (deg) | min metric SJ | corner bound | min SJ beyond 2 / 4 edges of a corner | edges in band | irregular | cells / target |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
-        print(f"| {r['angle']} | {r['stretch']:g} | {r['path']} | {r['dev']:.1f} | {r['min_sj']:.2f} | {r['bound']:.2f} | "
+        print(f"| {r['angle']} | {r['stretch']:g} | {r['path']} | {r['dev']:.1f} | {r['min_sj']:.2f} | {r['bound']:.2f} | {r['min_sj_beyond'][2]:.3f} / {r['min_sj_beyond'][4]:.3f} | "
               f"{100 * r['in_band']:.1f} % | {100 * r['irregular']:.1f} % | {r['cells']} / {r['target']:.0f} ({100 * (r['cells'] / r['target'] - 1):+.1f} %) |")
 
 
