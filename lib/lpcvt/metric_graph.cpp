@@ -91,6 +91,9 @@ MetricGraph flip_and_list(const std::vector<Vec2>& x, std::vector<Tri>& T, const
     stack.pop_back();
     const int u = T[t].nb[k];
     if (u < 0) continue;
+    // `entry` is a stack position: one below ninit may have been reused by an entry pushed after
+    // a flip, but those are edges of the flipped triangles t, u only, so `flipped` rejects them
+    // (pushing an edge of an unflipped neighbour would need its own mark)
     const bool known = entry < ninit && !first.empty() && !flipped[t] && !flipped[u];
     if (known ? !first[entry] : !wants_flip(x, T, t, k, metric)) continue;
     const int c = T[t].v[k], p = T[t].v[(k + 1) % 3], q = T[t].v[(k + 2) % 3];

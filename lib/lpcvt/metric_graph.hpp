@@ -55,15 +55,19 @@ struct MetricGraph {
 /// never flip there.
 using EdgeMetric = std::function<Eigen::Matrix2d(const std::array<Vec2, 4>& corners)>;
 
-/// Makes independent EdgeMetric objects (each may keep state, e.g. a point-location hint) that
-/// give the same answers as the serial one: with it, the first in-circle test of every edge is
-/// made in parallel (OpenMP, fixed blocks of edges, one metric per block), and the serial Lawson
-/// loop reuses those answers for edges whose two triangles no flip has touched. The result does
-/// not depend on the thread count.
+/// Makes independent EdgeMetric objects (each may keep state, e.g. a point-location hint): with
+/// it, the first in-circle test of every edge is made in parallel (OpenMP, fixed blocks of 4,096
+/// edges, one fresh metric per block), and the serial Lawson loop reuses those answers for edges
+/// whose two triangles no flip has touched. The result does not depend on the thread count. It is
+/// the graph of the call without a factory when the metric's answer does not depend on its state;
+/// a stateful metric may differ there (the background's point location puts a point within its
+/// tolerance of a cell edge in either cell, by where its walk starts), so the two graphs can
+/// differ where such a tie changes a flip decision.
 using EdgeMetricFactory = std::function<EdgeMetric()>;
 
 /// Lawson flips of the triangulation `tris` (CCW triangles over `sites`, e.g. the Euclidean
-/// Delaunay triangulation) by the metric in-circle test, then the neighbour lists.
+/// Delaunay triangulation; a manifold triangulation: every interior edge in exactly two triangles)
+/// by the metric in-circle test, then the neighbour lists.
 MetricGraph metric_delaunay(const std::vector<Vec2>& sites, std::vector<std::array<int, 3>> tris,
                             const EdgeMetric& metric, const EdgeMetricFactory& parallel_metric = {});
 

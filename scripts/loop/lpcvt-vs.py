@@ -22,11 +22,13 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from compare import interp_loglog  # noqa: E402  (the study reports' interpolation)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+if sys.argv[1:] in (["-h"], ["--help"]):
+    print(__doc__.strip())
+    sys.exit(0)
 if len(sys.argv) > 2 or (len(sys.argv) == 2 and sys.argv[1].startswith("-")):
-    print(__doc__.strip() if sys.argv[1] in ("-h", "--help") else
-          "lpcvt-vs.py: unknown option or extra argument: " + " ".join(sys.argv[1:]) + " (usage: lpcvt-vs.py [RUNS])",
-          file=sys.stdout if sys.argv[1] in ("-h", "--help") else sys.stderr)
-    sys.exit(0 if sys.argv[1] in ("-h", "--help") else 2)
+    print("lpcvt-vs.py: unknown option or extra argument: " + " ".join(sys.argv[1:]) + " (usage: lpcvt-vs.py [RUNS])",
+          file=sys.stderr)
+    sys.exit(2)
 RUNS = sys.argv[1] if len(sys.argv) > 1 else "runs"
 if not os.path.isdir(RUNS):
     print("lpcvt-vs.py: %s: no such directory (the RUNS of make -f Makefile.cases studies)" % RUNS, file=sys.stderr)

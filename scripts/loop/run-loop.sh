@@ -165,8 +165,8 @@ jit=()  # JITTER joins the run's parameters only when used (older runs have none
 [ "$JITTER" = 0 ] || jit=(jitter="$JITTER")
 sjit=()
 [ "$START_JITTER" = 0 ] || sjit=(start_jitter="$START_JITTER")
-fitf=()  # likewise FIT_FRAME, only when not the default
-[ "$FIT_FRAME" = raw ] || fitf=(fit_frame="$FIT_FRAME")
+fitf=()  # likewise FIT_FRAME, only when not the default and only for the method it changes
+[ "$FIT_FRAME" = raw ] || [ "$METHOD" != lpcvt ] || fitf=(fit_frame="$FIT_FRAME")
 msg="$(ctl params "$OUT/loop.json" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
   method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" ${jit[@]+"${jit[@]}"} \
   smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} \
@@ -352,7 +352,9 @@ while :; do
         fit="$d/frame.msh" wf=()
         if [ "$FIT_FRAME" = meshed ]; then  # quadsmooth fits the frame lpcvt meshed (after its filters)
           fit="$d/meshed-frame.msh" wf=(--write-frame "$fit")
-          [ -f "$fit" ] || rm -f "$d/tri.msh"  # a resumed step without it: lpcvt again
+          # a resumed step without it, or with one older than tri.msh (lpcvt stopped between the
+          # two): lpcvt again
+          { [ -f "$fit" ] && ! [ "$d/tri.msh" -nt "$fit" ]; } || rm -f "$d/tri.msh"
         fi
         run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED" --jitter "$JITTER" ${wf[@]+"${wf[@]}"} ${geo[@]+"${geo[@]}"}
         # the tools' defaults: recombine matches in the metric of the frame lpcvt attached to

@@ -58,4 +58,13 @@ assert interp_loglog(pts, 1e5) == (None, "not reached")
 y, flag = interp_loglog(pts, 3e3)
 assert flag == "" and abs(y / (1e-2 * 3 ** -2) - 1) < 1e-12
 PYEOF
+# lpcvt-vs.py's command line: --help is its usage (exit 0); an unknown option, an extra argument or
+# a missing RUNS directory is one line on stderr and exit 2
+"$PY" "$SRC/scripts/loop/lpcvt-vs.py" --help > "$T/vs-help" || fail "lpcvt-vs.py --help: exit $?"
+grep -q "^usage: lpcvt-vs.py \[RUNS\]" "$T/vs-help" || fail "lpcvt-vs.py --help: $(head -3 "$T/vs-help")"
+for args in "-x" "$T/study $T/study" "-h $T/study" "$T/no-such-runs"; do
+  rc=0; "$PY" "$SRC/scripts/loop/lpcvt-vs.py" $args > "$T/vs-out" 2> "$T/vs-err" || rc=$?
+  [ $rc -eq 2 ] && [ ! -s "$T/vs-out" ] && [ "$(wc -l < "$T/vs-err")" -eq 1 ] \
+    || fail "lpcvt-vs.py $args: exit $rc, stdout $(wc -c < "$T/vs-out") bytes, stderr: $(cat "$T/vs-err")"
+done
 echo "loop report: all checks passed"

@@ -6,12 +6,20 @@
 #include <random>
 #include <vector>
 
+#include <omp.h>
+
 #include "lpcvt/background.hpp"
 #include "lpcvt/boundary_points.hpp"
 #include "lpcvt/energy.hpp"
 #include "mesh/mesh.hpp"
 
 namespace lpcvt_test {
+
+/// Restores the OpenMP thread count when a test that changes it ends (also on a failed REQUIRE).
+struct RestoreThreads {
+  int saved = omp_get_max_threads();
+  ~RestoreThreads() { omp_set_num_threads(saved); }
+};
 
 using quadapt::Mesh;
 using quadapt::Vec2;

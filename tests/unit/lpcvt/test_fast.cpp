@@ -2,6 +2,7 @@
 // start, exact point counts, the weighted energy, metric smoothing and gradation, multilevel.
 #include <doctest/doctest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
 #include <cmath>
@@ -299,36 +300,45 @@ TEST_CASE("voronoi_alignments: both figures from one diagram, the same for 1 and
   bg.set_metric_cells(true);
   int nfixed = 0;
   const std::vector<Vec2> x = boundary_and_random(bg, 3000, 3, nfixed);
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  const std::array<AlignmentStats, 2> one = voronoi_alignments(bg, x, nfixed);
-  omp_set_num_threads(2);
-  const std::array<AlignmentStats, 2> two = voronoi_alignments(bg, x, nfixed);
-  omp_set_num_threads(threads);
+  std::array<AlignmentStats, 2> one, two;
+  {
+    const RestoreThreads restore;
+    omp_set_num_threads(1);
+    one = voronoi_alignments(bg, x, nfixed);
+    omp_set_num_threads(2);
+    two = voronoi_alignments(bg, x, nfixed);
+  }
   for (int k = 0; k < 2; ++k) {
     CHECK(one[k].mean_deviation == two[k].mean_deviation);  // bit for bit
     CHECK(one[k].frac_within_10 == two[k].frac_within_10);
     CHECK(one[k].edges == two[k].edges);
   }
-  // the definition, summed serially over the pieces: the metric axes' deviation
+  // the definition, summed serially over the pieces: the deviation from the metric axes (M u) and
+  // from the principal directions (u in the eigenbasis of M^T M)
   const RestrictedVoronoi rvd(bg, x);
-  double w = 0, d = 0;
+  double w = 0, d = 0, dp = 0;
   int edges = 0;
   for (const RvdPiece& pc : rvd.all_pieces()) {
     if (pc.site < nfixed) continue;
     const int n = static_cast<int>(pc.v.size());
     for (int e = 0; e < n; ++e) {
       if (pc.label[e] < 0) continue;
-      const Vec2 u = bg.metric(pc.cell, 0.5 * (pc.v[e] + pc.v[(e + 1) % n])) * (pc.v[(e + 1) % n] - pc.v[e]);
+      const Mat2 M = bg.metric(pc.cell, 0.5 * (pc.v[e] + pc.v[(e + 1) % n]));
+      const Vec2 t = pc.v[(e + 1) % n] - pc.v[e], u = M * t;
       if (!(u.norm() > 0)) continue;
       const double a = std::atan2(std::abs(u.y()), std::abs(u.x())) * 180 / M_PI;
       w += u.norm();
       d += u.norm() * std::min(a, 90 - a);
+      const Vec2 tp = Eigen::SelfAdjointEigenSolver<Mat2>(M.transpose() * M).eigenvectors().transpose() * t;
+      const double ap = std::atan2(std::abs(tp.y()), std::abs(tp.x())) * 180 / M_PI;
+      dp += u.norm() * std::min(ap, 90 - ap);
       ++edges;
     }
   }
   CHECK(one[0].edges == edges);
   CHECK(one[0].mean_deviation == doctest::Approx(d / w).epsilon(1e-12));
   CHECK(one[0].mean_deviation > 5);  // random sites: far from aligned (the figure is not trivially 0)
+  CHECK(one[1].mean_deviation == doctest::Approx(dp / w).epsilon(1e-12));
+  CHECK(std::abs(one[1].mean_deviation - one[0].mean_deviation) > 0.1);  // the two figures differ here
   CHECK(voronoi_alignment(bg, x, nfixed, true).mean_deviation == one[1].mean_deviation);
 }

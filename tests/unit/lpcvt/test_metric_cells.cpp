@@ -226,12 +226,14 @@ TEST_CASE("site tree: built in parallel (subtrees as tasks), the same answers fo
   std::uniform_real_distribution<double> u(0, 1);
   std::vector<Vec2> x(60000);  // above the task threshold (16,384 sites) at the top two levels
   for (auto& p : x) p = Vec2(u(rng), u(rng) * u(rng));
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  const SiteTree one(x);
-  omp_set_num_threads(2);
-  const SiteTree two(x);
-  omp_set_num_threads(threads);
+  SiteTree one, two;
+  {
+    const RestoreThreads restore;
+    omp_set_num_threads(1);
+    one = SiteTree(x);
+    omp_set_num_threads(2);
+    two = SiteTree(x);
+  }
   for (int k = 0; k < 100; ++k) {
     const Vec2 c(u(rng), 0.3 * u(rng)), e(0.02 * u(rng), 0.01 * u(rng));
     std::vector<int> a, b, brute;

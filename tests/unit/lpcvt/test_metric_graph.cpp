@@ -156,8 +156,9 @@ TEST_CASE("energy with a carried graph that has inverted triangles: still the ex
 
 namespace {
 
-/// A metric whose axes turn with position (5:1, 1.5 turns across the square), with a hint like
-/// the background's point location: a stateful EdgeMetric, as the parallel tests must allow.
+/// A metric whose axes turn with position (5:1, 1.5 turns across the square); it counts its calls
+/// (the serial loop's tests). Its answers do not depend on that state, so the graph with the
+/// parallel first tests must be the serial loop's exactly.
 struct TurningMetric {
   int calls = 0;
   Mat2 operator()(const std::array<Vec2, 4>& q) {
@@ -185,7 +186,7 @@ TEST_CASE("metric graph: the parallel first tests give the serial loop's graph, 
   const MetricGraph ref = metric_delaunay(x0, dt.triangles(), [&](const std::array<Vec2, 4>& q) { return serial_m(q); });
   REQUIRE(ref.flips > 1000);  // the turning metric flips a good part of the Euclidean edges
   const EdgeMetricFactory factory = [] { return EdgeMetric(TurningMetric{}); };
-  const int threads = omp_get_max_threads();
+  const RestoreThreads restore;
   for (int nt : {1, 2}) {
     omp_set_num_threads(nt);
     TurningMetric m;
@@ -208,5 +209,4 @@ TEST_CASE("metric graph: the parallel first tests give the serial loop's graph, 
     CHECK(a.adj == b.adj);
     CHECK(mb.calls < ma.calls / 4);  // few flips after a small move: the serial loop tests little
   }
-  omp_set_num_threads(threads);
 }
