@@ -10,10 +10,7 @@ namespace {
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-struct Tri {
-  std::array<int, 3> v;
-  std::array<int, 3> nb;  ///< nb[k]: triangle across the edge opposite v[k] (-1: none)
-};
+using Tris = std::vector<std::array<int, 3>>;
 
 int index_of(const std::array<int, 3>& a, int x) { return a[0] == x ? 0 : a[1] == x ? 1 : 2; }
 
@@ -34,18 +31,17 @@ double metric_incircle(const Eigen::Matrix2d& M, const Vec2& a, const Vec2& b, c
 
 namespace {
 
-/// Lawson flips of the triangles T (with their adjacency) by the flip rule (header), then the
-/// neighbour lists; T's final state is kept in g (tris, tnb) for metric_delaunay_update.
-/// The flip rule's test of edge k of triangle t against its neighbour u = T[t].nb[k]: flip?
-/// (Without the "never re-made" rule and the cap, which the Lawson loop applies.)
-bool wants_flip(const std::vector<Vec2>& x, const std::vector<Tri>& T, int t, int k, const EdgeMetric& metric) {
-  const int u = T[t].nb[k];
+/// The flip rule's test of edge k of triangle t (vertices V[t], neighbours N[t]: N[t][k] across
+/// the edge opposite V[t][k]) against its neighbour u = N[t][k]: flip? (Without the "never
+/// re-made" rule and the cap, which the Lawson loop applies.)
+bool wants_flip(const std::vector<Vec2>& x, const Tris& V, const Tris& N, int t, int k, const EdgeMetric& metric) {
+  const int u = N[t][k];
   if (u < 0) return false;
-  const int c = T[t].v[k], p = T[t].v[(k + 1) % 3], q = T[t].v[(k + 2) % 3];
-  const int l = index_of(T[u].nb, t);
-  if (T[u].nb[l] != t) return false;
-  const int d = T[u].v[l];
-  if (T[u].v[(l + 1) % 3] != q || T[u].v[(l + 2) % 3] != p) return false;
+  const int c = V[t][k], p = V[t][(k + 1) % 3], q = V[t][(k + 2) % 3];
+  const int l = index_of(N[u], t);
+  if (N[u][l] != t) return false;
+  const int d = V[u][l];
+  if (V[u][(l + 1) % 3] != q || V[u][(l + 2) % 3] != p) return false;
   const Eigen::Matrix2d M = metric({x[c], x[p], x[d], x[q]});
   if (!(metric_incircle(M, x[c], x[p], x[q], x[d]) > 1e-9)) return false;
   // strictly convex quadrilateral c p d q: both new triangles positive (relative to size)
@@ -53,22 +49,30 @@ bool wants_flip(const std::vector<Vec2>& x, const std::vector<Tri>& T, int t, in
   return cross2(x[p] - x[c], x[d] - x[c]) > 1e-12 * s && cross2(x[d] - x[c], x[q] - x[c]) > 1e-12 * s;
 }
 
-MetricGraph flip_and_list(const std::vector<Vec2>& x, std::vector<Tri>& T, const EdgeMetric& metric,
-                          const EdgeMetricFactory& parallel_metric) {
+/// Lawson flips of g's triangles (g.tris, with their adjacency g.tnb) in place by the flip rule
+/// (header), then g's neighbour lists; g's buffers are reused (no allocation once they are large
+/// enough: an evaluation of the energy carries the graph and calls this every time).
+void flip_and_list(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric& metric,
+                   const EdgeMetricFactory& parallel_metric) {
   const int n = static_cast<int>(x.size());
-  const int nt = static_cast<int>(T.size());
-  MetricGraph g;
+  Tris& V = g.tris;
+  Tris& N = g.tnb;
+  const int nt = static_cast<int>(V.size());
+  g.flips = 0;
+  g.capped = false;
+  MetricGraph::Scratch& w = g.scratch;
   // Edge stack, seeded with every interior edge once (t < neighbour), in triangle order
   // (deterministic).
-  std::vector<std::pair<int, int>> stack;
-  stack.reserve(static_cast<size_t>(nt) * 3 / 2);
+  std::vector<std::pair<int, int>>& stack = w.stack;
+  stack.clear();
   for (int t = nt - 1; t >= 0; --t)
     for (int k = 2; k >= 0; --k)
-      if (T[t].nb[k] > t) stack.emplace_back(t, k);
+      if (N[t][k] > t) stack.emplace_back(t, k);
   // The first test of every edge, in parallel (fixed blocks: the same answers for any thread
   // count); reused below while neither of the edge's triangles has been flipped.
   const size_t ninit = stack.size();
-  std::vector<char> first;
+  std::vector<char>& first = w.first;
+  first.clear();
   if (parallel_metric) {
     first.resize(ninit);
     constexpr long kBlock = 4096;
@@ -78,27 +82,29 @@ MetricGraph flip_and_list(const std::vector<Vec2>& x, std::vector<Tri>& T, const
       const EdgeMetric m = parallel_metric();
       const size_t e = std::min(ninit, static_cast<size_t>((b + 1) * kBlock));
       for (size_t i = static_cast<size_t>(b * kBlock); i < e; ++i)
-        first[i] = wants_flip(x, T, stack[i].first, stack[i].second, m);
+        first[i] = wants_flip(x, V, N, stack[i].first, stack[i].second, m);
     }
   }
-  std::vector<char> flipped(parallel_metric ? nt : 0, 0);
+  std::vector<char>& flipped = w.flipped;
+  flipped.assign(parallel_metric ? nt : 0, 0);
   const long cap = 20L * std::max(n, 1);
   auto edge_key = [n](int a, int b) { return static_cast<long long>(std::min(a, b)) * n + std::max(a, b); };
-  std::unordered_set<long long> removed;
+  std::unordered_set<long long>& removed = w.removed;
+  removed.clear();
   while (!stack.empty()) {
     const size_t entry = stack.size() - 1;
     auto [t, k] = stack.back();
     stack.pop_back();
-    const int u = T[t].nb[k];
+    const int u = N[t][k];
     if (u < 0) continue;
     // `entry` is a stack position: one below ninit may have been reused by an entry pushed after
     // a flip, but those are edges of the flipped triangles t, u only, so `flipped` rejects them
     // (pushing an edge of an unflipped neighbour would need its own mark)
     const bool known = entry < ninit && !first.empty() && !flipped[t] && !flipped[u];
-    if (known ? !first[entry] : !wants_flip(x, T, t, k, metric)) continue;
-    const int c = T[t].v[k], p = T[t].v[(k + 1) % 3], q = T[t].v[(k + 2) % 3];
-    const int l = index_of(T[u].nb, t);
-    const int d = T[u].v[l];
+    if (known ? !first[entry] : !wants_flip(x, V, N, t, k, metric)) continue;
+    const int c = V[t][k], p = V[t][(k + 1) % 3], q = V[t][(k + 2) % 3];
+    const int l = index_of(N[u], t);
+    const int d = V[u][l];
     // an edge removed by a flip is never made again: with a metric that varies, Lawson's flips
     // have no potential that decreases and can cycle (an S-shock frame, 1668 triangles: 39,680
     // flips until the cap); with a constant metric no removed edge is ever made again anyway
@@ -107,14 +113,14 @@ MetricGraph flip_and_list(const std::vector<Vec2>& x, std::vector<Tri>& T, const
       g.capped = true;
       break;
     }
-    const int A = T[t].nb[(k + 1) % 3], B = T[t].nb[(k + 2) % 3];
-    const int C = T[u].nb[(l + 1) % 3], D = T[u].nb[(l + 2) % 3];
-    T[t].v = {c, p, d};
-    T[t].nb = {C, u, B};
-    T[u].v = {c, d, q};
-    T[u].nb = {D, A, t};
-    if (C >= 0) T[C].nb[index_of(T[C].nb, u)] = t;
-    if (A >= 0) T[A].nb[index_of(T[A].nb, t)] = u;
+    const int A = N[t][(k + 1) % 3], B = N[t][(k + 2) % 3];
+    const int C = N[u][(l + 1) % 3], D = N[u][(l + 2) % 3];
+    V[t] = {c, p, d};
+    N[t] = {C, u, B};
+    V[u] = {c, d, q};
+    N[u] = {D, A, t};
+    if (C >= 0) N[C][index_of(N[C], u)] = t;
+    if (A >= 0) N[A][index_of(N[A], t)] = u;
     removed.insert(edge_key(p, q));
     if (!flipped.empty()) flipped[t] = flipped[u] = 1;
     ++g.flips;
@@ -126,46 +132,51 @@ MetricGraph flip_and_list(const std::vector<Vec2>& x, std::vector<Tri>& T, const
   }
   // neighbour lists (CSR, sorted): every edge once, from the triangle with the smaller index (or
   // its only one on the hull)
-  g.tris.resize(nt);
-  g.tnb.resize(nt);
   g.ptr.assign(n + 1, 0);
   auto owns = [&](int t, int k) {  // edge v[k] -> v[k+1] of t, opposite v[k+2]
-    const int u = T[t].nb[(k + 2) % 3];
+    const int u = N[t][(k + 2) % 3];
     return u < 0 || t < u;
   };
   for (int t = 0; t < nt; ++t) {
-    g.tris[t] = T[t].v;
-    g.tnb[t] = T[t].nb;
     for (int k = 0; k < 3; ++k)
       if (owns(t, k)) {
-        ++g.ptr[T[t].v[k] + 1];
-        ++g.ptr[T[t].v[(k + 1) % 3] + 1];
+        ++g.ptr[V[t][k] + 1];
+        ++g.ptr[V[t][(k + 1) % 3] + 1];
       }
   }
   for (int i = 0; i < n; ++i) g.ptr[i + 1] += g.ptr[i];
   g.adj.resize(g.ptr[n]);
   {
-    std::vector<int> fill(g.ptr.begin(), g.ptr.end() - 1);
+    std::vector<int>& fill = w.fill;
+    fill.assign(g.ptr.begin(), g.ptr.end() - 1);
     for (int t = 0; t < nt; ++t)
       for (int k = 0; k < 3; ++k)
         if (owns(t, k)) {
-          const int a = T[t].v[k], b = T[t].v[(k + 1) % 3];
+          const int a = V[t][k], b = V[t][(k + 1) % 3];
           g.adj[fill[a]++] = b;
           g.adj[fill[b]++] = a;
         }
   }
-  // sorted; duplicates (only where the input has an edge without a matching twin) removed
-  int w = 0;
+  // sorted (in parallel: each list on its own); duplicates (only where the input has an edge
+  // without a matching twin) removed
+  long dup = 0;
+#pragma omp parallel for schedule(static) reduction(+ : dup) if (n >= 50000)
   for (int i = 0; i < n; ++i) {
     const int b = g.ptr[i], e = g.ptr[i + 1];
     std::sort(g.adj.begin() + b, g.adj.begin() + e);
-    g.ptr[i] = w;
-    for (int k = b; k < e; ++k)
-      if (k == b || g.adj[k] != g.adj[k - 1]) g.adj[w++] = g.adj[k];
+    for (int k = b + 1; k < e; ++k) dup += g.adj[k] == g.adj[k - 1];
   }
-  g.ptr[n] = w;
-  g.adj.resize(w);
-  return g;
+  if (dup > 0) {
+    int out = 0;
+    for (int i = 0; i < n; ++i) {
+      const int b = g.ptr[i], e = g.ptr[i + 1];
+      g.ptr[i] = out;
+      for (int k = b; k < e; ++k)
+        if (k == b || g.adj[k] != g.adj[k - 1]) g.adj[out++] = g.adj[k];
+    }
+    g.ptr[n] = out;
+    g.adj.resize(out);
+  }
 }
 
 }  // namespace
@@ -174,7 +185,8 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
                             const EdgeMetric& metric, const EdgeMetricFactory& parallel_metric) {
   const int n = static_cast<int>(x.size());
   const int nt = static_cast<int>(tris.size());
-  std::vector<Tri> T(nt);
+  MetricGraph g;
+  g.tnb.assign(nt, {-1, -1, -1});
   {
     // triangle adjacency from the outgoing half-edges of every vertex (CSR; no hashing)
     std::vector<int> hptr(n + 1, 0), hto(3 * static_cast<size_t>(nt)), hid(3 * static_cast<size_t>(nt));
@@ -182,43 +194,39 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
       for (int k = 0; k < 3; ++k) ++hptr[tris[t][(k + 1) % 3] + 1];
     for (int i = 0; i < n; ++i) hptr[i + 1] += hptr[i];
     std::vector<int> fill(hptr.begin(), hptr.end() - 1);
-    for (int t = 0; t < nt; ++t) {
-      T[t].v = tris[t];
-      T[t].nb = {-1, -1, -1};
+    for (int t = 0; t < nt; ++t)
       for (int k = 0; k < 3; ++k) {  // directed edge a -> b of triangle t, opposite v[k]
         const int h = fill[tris[t][(k + 1) % 3]]++;
         hto[h] = tris[t][(k + 2) % 3];
         hid[h] = t;
       }
-    }
     for (int t = 0; t < nt; ++t)
       for (int k = 0; k < 3; ++k) {
         const int a = tris[t][(k + 2) % 3], b = tris[t][(k + 1) % 3];  // the twin b <- a
         for (int h = hptr[a]; h < hptr[a + 1]; ++h)
           if (hto[h] == b) {
-            T[t].nb[k] = hid[h];
+            g.tnb[t][k] = hid[h];
             break;
           }
       }
   }
-  return flip_and_list(x, T, metric, parallel_metric);
+  g.tris = std::move(tris);
+  flip_and_list(x, g, metric, parallel_metric);
+  return g;
 }
 
 bool metric_delaunay_update(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric& metric,
                             int max_inverted, const EdgeMetricFactory& parallel_metric) {
   if (g.num_sites() != static_cast<int>(x.size()) || g.tnb.size() != g.tris.size()) return false;
   const int nt = static_cast<int>(g.tris.size());
-  std::vector<Tri> T(nt);
   int inverted = 0;
   for (int t = 0; t < nt; ++t) {
     const std::array<int, 3>& v = g.tris[t];
     // triangles no longer counter-clockwise at the new positions: more than allowed, rebuild
     if (!(cross2(x[v[1]] - x[v[0]], x[v[2]] - x[v[0]]) > 0) && ++inverted > max_inverted) return false;
-    T[t].v = v;
-    T[t].nb = g.tnb[t];
   }
   const long before = g.inverted;
-  g = flip_and_list(x, T, metric, parallel_metric);
+  flip_and_list(x, g, metric, parallel_metric);  // in place
   g.inverted = before + inverted;
   return true;
 }

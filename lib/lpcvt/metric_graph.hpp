@@ -29,6 +29,8 @@
 // 0.007 in the quads). A cap of 20 flips per site guards against longer cycles (reported).
 #include <array>
 #include <functional>
+#include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -42,9 +44,17 @@ struct MetricGraph {
   std::vector<std::array<int, 3>> tris;    ///< the flipped triangles, CCW
   std::vector<std::array<int, 3>> tnb;     ///< tnb[t][k]: the triangle across the edge opposite
                                            ///< tris[t][k] (-1: none), for metric_delaunay_update
-  long flips = 0;                          ///< flips made
+  long flips = 0;                          ///< flips made (by the last build or update)
   long inverted = 0;                       ///< inverted triangles carried (metric_delaunay_update)
   bool capped = false;                     ///< the flip cap was reached
+  /// Buffers of the flips, kept between updates (an evaluation of the energy carries the graph
+  /// and updates it every time: no allocation once they are large enough). Not part of the graph.
+  struct Scratch {
+    std::vector<std::pair<int, int>> stack;
+    std::vector<char> first, flipped;
+    std::vector<int> fill;
+    std::unordered_set<long long> removed;
+  } scratch;
   int num_sites() const { return static_cast<int>(ptr.size()) - 1; }
   const int* nbr_begin(int i) const { return adj.data() + ptr[i]; }
   const int* nbr_end(int i) const { return adj.data() + ptr[i + 1]; }
