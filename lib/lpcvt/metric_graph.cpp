@@ -49,87 +49,11 @@ bool wants_flip(const std::vector<Vec2>& x, const Tris& V, const Tris& N, int t,
   return cross2(x[p] - x[c], x[d] - x[c]) > 1e-12 * s && cross2(x[d] - x[c], x[q] - x[c]) > 1e-12 * s;
 }
 
-/// The neighbours of vertex v: the other vertices of the triangles around it, found by walking
-/// its fan from triangle t0 (which contains v) across the edges at v, both ways where the fan
-/// meets the hull; sorted, each once: the set a rebuild from all triangles gives for v. False
-/// when t0 does not contain v or the walk does not end (the caller rebuilds).
-bool fan_neighbours(const Tris& V, const Tris& N, int v, int t0, std::vector<int>& out) {
-  out.clear();
-  if (t0 < 0 || V[t0][index_of(V[t0], v)] != v) return false;
-  for (int dir = 0; dir < 2; ++dir) {
-    int t = t0;
-    for (int step = 0; step < 4096; ++step) {
-      const int i = index_of(V[t], v);
-      if (V[t][i] != v) return false;
-      out.push_back(V[t][(i + 1) % 3]);
-      out.push_back(V[t][(i + 2) % 3]);
-      // across the edge (v, V[i + 1]) (opposite V[i + 2]) one way, across (v, V[i + 2]) the other
-      t = N[t][dir == 0 ? (i + 2) % 3 : (i + 1) % 3];
-      if (t == t0) {
-        std::sort(out.begin(), out.end());
-        out.erase(std::unique(out.begin(), out.end()), out.end());
-        return true;  // a closed fan: one way is enough
-      }
-      if (t < 0) break;  // the hull: walk the other way too
-      if (step == 4095) return false;
-    }
-  }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return true;
-}
-
-/// g's neighbour lists (CSR, sorted) carried through the flips of g.scratch.events (p, q, c, d, t,
-/// u: edge p q replaced by c d, the flip's two triangles): the lists of the flips' vertices walked
-/// anew around each vertex, the other lists copied in one pass. False (lists untouched) when a
-/// walk fails; the caller then rebuilds them from the triangles.
-bool update_lists(MetricGraph& g, int n) {
-  MetricGraph::Scratch& w = g.scratch;
-  if (w.events.empty()) return true;
-  // (vertex, last event index) for every vertex of a flip: the last flip that touched it left
-  // it in one of that flip's two triangles, and no later flip removed it from there
-  std::vector<std::array<int, 2>>& at = w.changes;
-  at.clear();
-  for (int e = 0; e < static_cast<int>(w.events.size()); ++e)
-    for (int k = 0; k < 4; ++k) at.push_back({w.events[e][k], e});
-  std::sort(at.begin(), at.end());
-  std::vector<int>& ptr = w.ptr2;
-  std::vector<int>& adj = w.adj2;
-  ptr.resize(n + 1);
-  adj.clear();
-  adj.reserve(g.adj.size() + 2 * w.events.size());
-  std::vector<int>& list = w.fill;
-  int from = 0;  // vertices [from, v) are copied as they are
-  auto copy_to = [&](int v) {  // the unchanged lists of [from, v) in one block
-    const int off = static_cast<int>(adj.size()) - g.ptr[from];
-    for (int i = from; i < v; ++i) ptr[i] = g.ptr[i] + off;
-    adj.insert(adj.end(), g.adj.begin() + g.ptr[from], g.adj.begin() + g.ptr[v]);
-  };
-  for (size_t c = 0; c < at.size();) {
-    const int v = at[c][0];
-    size_t e = c;
-    while (e + 1 < at.size() && at[e + 1][0] == v) ++e;
-    const auto& ev = w.events[at[e][1]];  // the last flip at v
-    const int t = g.tris[ev[4]][index_of(g.tris[ev[4]], v)] == v ? ev[4] : ev[5];
-    if (!fan_neighbours(g.tris, g.tnb, v, t, list)) return false;
-    copy_to(v);
-    ptr[v] = static_cast<int>(adj.size());
-    adj.insert(adj.end(), list.begin(), list.end());
-    from = v + 1;
-    c = e + 1;
-  }
-  copy_to(n);
-  ptr[n] = static_cast<int>(adj.size());
-  g.ptr.swap(ptr);
-  g.adj.swap(adj);
-  return true;
-}
-
 /// Lawson flips of g's triangles (g.tris, with their adjacency g.tnb) in place by the flip rule
 /// (header), then g's neighbour lists; g's buffers are reused (no allocation once they are large
 /// enough: an evaluation of the energy carries the graph and calls this every time).
 void flip_and_list(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric& metric,
-                   const EdgeMetricFactory& parallel_metric, bool lists_valid) {
+                   const EdgeMetricFactory& parallel_metric) {
   const int n = static_cast<int>(x.size());
   Tris& V = g.tris;
   Tris& N = g.tnb;
@@ -167,8 +91,6 @@ void flip_and_list(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric&
   auto edge_key = [n](int a, int b) { return static_cast<long long>(std::min(a, b)) * n + std::max(a, b); };
   std::unordered_set<long long>& removed = w.removed;
   removed.clear();
-  std::vector<std::array<int, 6>>& events = w.events;  // the flips (p q replaced by c d in t, u)
-  events.clear();
   while (!stack.empty()) {
     const size_t entry = stack.size() - 1;
     auto [t, k] = stack.back();
@@ -200,7 +122,6 @@ void flip_and_list(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric&
     if (C >= 0) N[C][index_of(N[C], u)] = t;
     if (A >= 0) N[A][index_of(N[A], t)] = u;
     removed.insert(edge_key(p, q));
-    events.push_back({p, q, c, d, t, u});
     if (!flipped.empty()) flipped[t] = flipped[u] = 1;
     ++g.flips;
     // the four outer edges may now fail the test
@@ -209,7 +130,6 @@ void flip_and_list(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric&
     stack.emplace_back(u, 0);
     stack.emplace_back(u, 1);
   }
-  if (lists_valid && update_lists(g, n)) return;
   // neighbour lists (CSR, sorted): every edge once, from the triangle with the smaller index (or
   // its only one on the hull)
   g.ptr.assign(n + 1, 0);
@@ -291,7 +211,7 @@ MetricGraph metric_delaunay(const std::vector<Vec2>& x, std::vector<std::array<i
       }
   }
   g.tris = std::move(tris);
-  flip_and_list(x, g, metric, parallel_metric, false);
+  flip_and_list(x, g, metric, parallel_metric);
   return g;
 }
 
@@ -306,7 +226,7 @@ bool metric_delaunay_update(const std::vector<Vec2>& x, MetricGraph& g, const Ed
     if (!(cross2(x[v[1]] - x[v[0]], x[v[2]] - x[v[0]]) > 0) && ++inverted > max_inverted) return false;
   }
   const long before = g.inverted;
-  flip_and_list(x, g, metric, parallel_metric, true);  // in place, the lists edited
+  flip_and_list(x, g, metric, parallel_metric);  // in place
   g.inverted = before + inverted;
   return true;
 }

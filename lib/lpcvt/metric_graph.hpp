@@ -52,10 +52,8 @@ struct MetricGraph {
   struct Scratch {
     std::vector<std::pair<int, int>> stack;
     std::vector<char> first, flipped;
-    std::vector<int> fill, ptr2, adj2;
+    std::vector<int> fill;
     std::unordered_set<long long> removed;
-    std::vector<std::array<int, 6>> events;
-    std::vector<std::array<int, 2>> changes;
   } scratch;
   int num_sites() const { return static_cast<int>(ptr.size()) - 1; }
   const int* nbr_begin(int i) const { return adj.data() + ptr[i]; }
