@@ -261,6 +261,9 @@ struct EnergyWorkspace::Impl {
   std::unique_ptr<MetricGraph> mg;    // metric cells: dt flipped in the metric
   long updates = 0, rebuilds = 0, carried = 0;
   std::vector<int> starts;  // metric cells: the last evaluation's start sites (RestrictedVoronoi)
+  std::unique_ptr<SiteTree> tree;  // metric cells, carried graph: the last evaluation's site tree
+  int tree_age = 0;                // refits since it was built
+  long tree_refits = 0;
   std::vector<ContribBuf> contrib;  // per integration cell
   struct Thread {
     RvdWorkspace rvd;
@@ -279,6 +282,7 @@ EnergyTimers& EnergyTimers::operator+=(const EnergyTimers& o) {
   updates += o.updates;
   rebuilds += o.rebuilds;
   carried += o.carried;
+  tree_refits += o.tree_refits;
   box_queries += o.box_queries;
   box_hits += o.box_hits;
   return *this;
@@ -361,8 +365,19 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
       ++W.rebuilds;
     }
     if (carry) {
-      rvd = std::make_unique<RestrictedVoronoi>(bg, sites, *W.mg, W.starts);
+      // the site tree of the evaluation before, refitted to the moved sites (O(n) instead of
+      // O(n log n)); built anew every tree_refits + 1 evaluations so its halves stay apart
+      if (W.tree && W.tree->size() == static_cast<int>(sites.size()) && W.tree_age < ws->settings.tree_refits) {
+        W.tree->refit(sites);
+        ++W.tree_age;
+        ++W.tree_refits;
+      } else {
+        W.tree = std::make_unique<SiteTree>(sites);
+        W.tree_age = 0;
+      }
+      rvd = std::make_unique<RestrictedVoronoi>(bg, sites, *W.mg, W.starts, *W.tree);
     } else if (metric) {
+      W.tree.reset();
       W.mg = std::make_unique<MetricGraph>(build_metric_graph(bg, sites, *W.dt));
       rvd = std::make_unique<RestrictedVoronoi>(bg, sites, *W.dt, W.mg.get());
     } else {
@@ -381,6 +396,7 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
     T.updates = ws->impl->updates;
     T.rebuilds = ws->impl->rebuilds;
     T.carried = ws->impl->carried;
+    T.tree_refits = ws->impl->tree_refits;
     T.box_queries = T.box_hits = 0;
     for (const auto& th : ws->impl->threads) {
       T.box_queries += th.rvd.box_queries;

@@ -69,6 +69,9 @@ struct EnergySettings {
                                    ///< Euclidean Delaunay graph (changes the rounding only)
   double carry_inverted = 1e-3;    ///< ... while at most this fraction of its triangles invert at
                                    ///< an evaluation, and 10x that have since the last rebuild
+  int tree_refits = 20;            ///< metric cells, carried graph: the site tree of the evaluation
+                                   ///< before refitted (SiteTree::refit) this many times in a row,
+                                   ///< then built anew (0: always built anew; changes the rounding only)
   int min_parallel_sites = 2000;  ///< OpenMP from this many sites on (smaller problems lose more to
                                   ///< thread start-up than they gain); tests set 0 for the parallel path
 };
@@ -80,6 +83,7 @@ struct EnergyTimers {
   long evaluations = 0;
   long updates = 0, rebuilds = 0;  ///< Delaunay graphs updated by flips / rebuilt
   long carried = 0;                ///< metric cells: metric graphs carried from the evaluation before
+  long tree_refits = 0;            ///< ... with the site tree refitted, not built anew
   long box_queries = 0, box_hits = 0;  ///< metric cells' security-radius searches: site-tree
                                        ///< queries / answered from a cached box (rvd.hpp)
   EnergyTimers& operator+=(const EnergyTimers& o);

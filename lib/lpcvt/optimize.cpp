@@ -3,10 +3,12 @@
 #include <LBFGSpp/LineSearchMoreThuente.h>
 #include <LBFGSpp/Param.h>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "lpcvt/energy.hpp"
 
@@ -14,6 +16,42 @@ namespace quadapt::lpcvt {
 
 namespace {
 using VecX = Eigen::VectorXd;
+using Index = Eigen::Index;
+
+// The O(n) vector work between evaluations (L-BFGS's two loops, the norms of the stopping rules,
+// the change of variables) in fixed blocks of entries, in parallel; sums are taken per block and
+// then over the blocks in order, so results do not depend on the thread count (and a problem of
+// one block gives the serial loop's bits).
+constexpr Index kBlock = Index(1) << 15;
+
+/// Calls f(b, e) for the blocks [b, e) of [0, n), in parallel when there are several.
+template <class F>
+void for_blocks(Index n, F&& f) {
+  const Index nb = (n + kBlock - 1) / kBlock;
+#pragma omp parallel for schedule(static) if (nb >= 4)
+  for (Index k = 0; k < nb; ++k) f(k * kBlock, std::min(n, (k + 1) * kBlock));
+}
+/// Sum over [0, n) of the blocks' partial sums f(b, e), in block order.
+template <class F>
+double block_sum(Index n, F&& f) {
+  const Index nb = (n + kBlock - 1) / kBlock;
+  if (nb <= 1) return n > 0 ? f(Index(0), n) : 0.0;
+  std::vector<double> part(nb);
+  for_blocks(n, [&](Index b, Index e) { part[b / kBlock] = f(b, e); });
+  double s = 0;
+  for (double v : part) s += v;
+  return s;
+}
+double dot(const VecX& a, const VecX& b) {
+  return block_sum(a.size(), [&](Index s, Index e) { return a.segment(s, e - s).dot(b.segment(s, e - s)); });
+}
+double sqnorm(const VecX& a) {
+  return block_sum(a.size(), [&](Index s, Index e) { return a.segment(s, e - s).squaredNorm(); });
+}
+/// y += c x
+void axpy(double c, const VecX& x, VecX& y) {
+  for_blocks(x.size(), [&](Index s, Index e) { y.segment(s, e - s) += c * x.segment(s, e - s); });
+}
 }  // namespace
 
 MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, int nfixed, double p,
@@ -62,32 +100,44 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
     }
   }
   auto metric_rms = [&](const VecX& dz) {
-    double s = 0;
-    for (int i = 0; i < nfree; ++i) s += (MP[i] * Vec2(dz[2 * i], dz[2 * i + 1])).squaredNorm();
+    const double s = block_sum(nfree, [&](Index b, Index e) {
+      double t = 0;
+      for (Index i = b; i < e; ++i) t += (MP[i] * Vec2(dz[2 * i], dz[2 * i + 1])).squaredNorm();
+      return t;
+    });
     return std::sqrt(s / nfree);
   };
   EnergyWorkspace ews(opt.energy);
   auto f = [&](const VecX& z, VecX& gz) -> double {
-    for (int i = 0; i < nfree; ++i) work[nfixed + i] = x0[nfixed + i] + P[i] * Vec2(z[2 * i], z[2 * i + 1]);
+    for_blocks(nfree, [&](Index b, Index e) {
+      for (Index i = b; i < e; ++i) work[nfixed + i] = x0[nfixed + i] + P[i] * Vec2(z[2 * i], z[2 * i + 1]);
+    });
     EnergyResult e = lp_energy(bg, work, p, true, &ews, opt.gamma);
     ++evals;
     gz.resize(2 * nfree);
-    for (int i = 0; i < nfree; ++i) {
-      const Vec2 gi = P[i].transpose() * e.grad[nfixed + i] / escale;
-      gz[2 * i] = gi.x();
-      gz[2 * i + 1] = gi.y();
-    }
+    for_blocks(nfree, [&](Index b, Index en) {
+      for (Index i = b; i < en; ++i) {
+        const Vec2 gi = P[i].transpose() * e.grad[nfixed + i] / escale;
+        gz[2 * i] = gi.x();
+        gz[2 * i + 1] = gi.y();
+      }
+    });
     return e.energy / escale;
   };
   auto unscaled_gnorm = [&](const VecX& gz) {
-    double s = 0;
-    for (int i = 0; i < nfree; ++i)
-      s += (P[i].transpose().inverse() * Vec2(gz[2 * i], gz[2 * i + 1])).squaredNorm();
+    const double s = block_sum(nfree, [&](Index b, Index e) {
+      double t = 0;
+      for (Index i = b; i < e; ++i) t += (P[i].transpose().inverse() * Vec2(gz[2 * i], gz[2 * i + 1])).squaredNorm();
+      return t;
+    });
     return std::sqrt(s) * escale;
   };
   auto displacement = [&](const VecX& dz) {
-    double s = 0;
-    for (int i = 0; i < nfree; ++i) s += (P[i] * Vec2(dz[2 * i], dz[2 * i + 1])).squaredNorm();
+    const double s = block_sum(nfree, [&](Index b, Index e) {
+      double t = 0;
+      for (Index i = b; i < e; ++i) t += (P[i] * Vec2(dz[2 * i], dz[2 * i + 1])).squaredNorm();
+      return t;
+    });
     return std::sqrt(s);
   };
 
@@ -160,13 +210,16 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
     q = g;
     const int h = static_cast<int>(S.size());
     for (int k = h - 1; k >= 0; --k) {
-      alpha[k] = rho[k] * S[k].dot(q);
-      q -= alpha[k] * Y[k];
+      alpha[k] = rho[k] * dot(S[k], q);
+      axpy(-alpha[k], Y[k], q);
     }
-    if (h > 0) q *= S[h - 1].dot(Y[h - 1]) / Y[h - 1].squaredNorm();
+    if (h > 0) {
+      const double c = dot(S[h - 1], Y[h - 1]) / sqnorm(Y[h - 1]);
+      for_blocks(q.size(), [&](Index b, Index e) { q.segment(b, e - b) *= c; });
+    }
     for (int k = 0; k < h; ++k) {
-      const double beta = rho[k] * Y[k].dot(q);
-      q += (alpha[k] - beta) * S[k];
+      const double beta = rho[k] * dot(Y[k], q);
+      axpy(alpha[k] - beta, S[k], q);
     }
     d = -q;
     // first step after a (re)start: a move of about 1/10 of the spacing for the largest site
@@ -207,7 +260,7 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
     ++since_restart;
     fresh = false;
     VecX s = z - xp, y = g - gp;
-    const double sy = s.dot(y);
+    const double sy = dot(s, y);
     record(fx, g, displacement(s));
     if (opt.past > 0 && iter % opt.past == 0) {
       res.window_move = metric_rms(z - zsnap);
@@ -215,7 +268,7 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
       if (history) history->back().window_move = res.window_move;
       window_checked = true;
     }
-    if (sy > 1e-12 * y.squaredNorm()) {
+    if (sy > 1e-12 * sqnorm(y)) {
       if (static_cast<int>(S.size()) == m) {
         S.pop_front();
         Y.pop_front();

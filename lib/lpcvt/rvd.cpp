@@ -164,6 +164,16 @@ RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec
   find_starts();
 }
 
+RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const MetricGraph& mg,
+                                     std::vector<int> start_guess, const SiteTree& tree)
+    : bg_(&bg), sites_(&sites), id_(next_rvd_id++), mg_(&mg), tree_(&tree), start_(std::move(start_guess)) {
+  if (static_cast<int>(start_.size()) != bg.num_cells())
+    throw NumericalError("RestrictedVoronoi: one start guess per integration cell expected");
+  if (tree.size() != static_cast<int>(sites.size()))
+    throw NumericalError("RestrictedVoronoi: the site tree is not of these sites");
+  find_starts();
+}
+
 void RestrictedVoronoi::find_starts() {
   const Background& bg = *bg_;
   std::vector<Vec2> centroids(bg.num_cells());
@@ -175,7 +185,10 @@ void RestrictedVoronoi::find_starts() {
   }
   if (dt_) start_ = dt_->nearest(centroids);  // else the guesses given
   if (!mg_) return;
-  tree_ = SiteTree(*sites_);
+  if (!tree_) {
+    own_tree_ = SiteTree(*sites_);
+    tree_ = &own_tree_;
+  }
   // nearest in G_Q: greedy walk over the metric graph from the Euclidean nearest site (exact for
   // a Delaunay graph of the mapped sites; the centroid then lies in the start site's cell)
   const std::vector<Vec2>& x = *sites_;
@@ -214,7 +227,7 @@ void RestrictedVoronoi::find_starts() {
       const Mat2 Gi = G.inverse();
       const Vec2 ext(std::sqrt(ds * Gi(0, 0)), std::sqrt(ds * Gi(1, 1)));
       std::vector<int> cand;
-      tree_.query(centroids[q] - ext, centroids[q] + ext, cand);
+      tree_->query(centroids[q] - ext, centroids[q] + ext, cand);
       for (int j : cand)
         if (dist(j) < ds || (dist(j) == ds && j < s)) {
           ds = dist(j);
@@ -248,7 +261,7 @@ std::pair<const int*, const int*> RestrictedVoronoi::security_candidates(int i, 
   ++ws.box_queries;
   const Vec2 e = kBoxMargin * ext;
   const int at = static_cast<int>(ws.box_sites.size());
-  tree_.query(x[i] - e, x[i] + e, ws.box_sites);
+  tree_->query(x[i] - e, x[i] + e, ws.box_sites);
   ws.box_gen[i] = ws.box_epoch;
   ws.box_ext[i] = e;
   ws.box_at[i] = {at, static_cast<int>(ws.box_sites.size()) - at};

@@ -78,6 +78,11 @@ class RestrictedVoronoi {
   /// evaluation's starts(); the same starts result), refined as always. delaunay() is not available.
   RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const MetricGraph& mg,
                     std::vector<int> start_guess);
+  /// The same with the site tree given (a tree of `sites`, e.g. the last evaluation's refitted by
+  /// SiteTree::refit; kept alive by the caller) instead of built anew. The pieces are the same
+  /// up to rounding: the security searches list their sites in that tree's order.
+  RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const MetricGraph& mg,
+                    std::vector<int> start_guess, const SiteTree& tree);
 
   const DelaunayGraph& delaunay() const { return *dt_; }
   /// Per integration cell: the site nearest to its centroid in G_Q (-1: none).
@@ -102,7 +107,8 @@ class RestrictedVoronoi {
   std::unique_ptr<MetricGraph> own_mg_;
   const DelaunayGraph* dt_ = nullptr;
   const MetricGraph* mg_ = nullptr;
-  SiteTree tree_;  ///< metric cells: box queries of the security-radius search
+  SiteTree own_tree_;
+  const SiteTree* tree_ = nullptr;  ///< metric cells: box queries of the security-radius search
   std::vector<int> start_;
   void find_starts();  ///< per integration cell: nearest site to its centroid (in G_Q)
   /// The sites of a box around x_i with half extents at least `ext`: from the workspace's cache

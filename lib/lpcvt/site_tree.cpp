@@ -1,6 +1,7 @@
 #include "lpcvt/site_tree.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include <omp.h>
 
@@ -14,13 +15,11 @@ SiteTree::SiteTree(const std::vector<Vec2>& sites) : idx_(sites.size()) {
 #pragma omp parallel if (n >= kParallelSites && !omp_in_parallel())
 #pragma omp single
   build(sites, 0, n, 0);
-  p_.resize(idx_.size());
-#pragma omp parallel for schedule(static) if (n >= kParallelSites && !omp_in_parallel())
-  for (int k = 0; k < n; ++k) p_[k] = sites[idx_[k]];
+  refit(sites);
 }
 
 void SiteTree::build(const std::vector<Vec2>& x, int b, int e, int depth) {
-  if (e - b <= 8) return;
+  if (e - b <= kLeaf) return;
   const int m = (b + e) / 2, a = depth & 1;
   std::nth_element(idx_.begin() + b, idx_.begin() + m, idx_.begin() + e, [&](int i, int j) {
     return x[i][a] != x[j][a] ? x[i][a] < x[j][a] : i < j;
@@ -36,6 +35,52 @@ void SiteTree::build(const std::vector<Vec2>& x, int b, int e, int depth) {
   }
 }
 
+void SiteTree::refit(const std::vector<Vec2>& sites) {
+  const int n = static_cast<int>(idx_.size());
+  p_.resize(n);
+  split_.resize(n);
+#pragma omp parallel for schedule(static) if (n >= kParallelSites && !omp_in_parallel())
+  for (int k = 0; k < n; ++k) p_[k] = sites[idx_[k]];
+#pragma omp parallel if (n >= kParallelSites && !omp_in_parallel())
+#pragma omp single
+  fit(0, n, 0);
+}
+
+std::array<double, 4> SiteTree::fit(int b, int e, int depth) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::array<double, 4> box{inf, -inf, inf, -inf};
+  auto add = [&box](const Vec2& p) {
+    box[0] = std::min(box[0], p.x());
+    box[1] = std::max(box[1], p.x());
+    box[2] = std::min(box[2], p.y());
+    box[3] = std::max(box[3], p.y());
+  };
+  if (e - b <= kLeaf) {
+    for (int k = b; k < e; ++k) add(p_[k]);
+    return box;
+  }
+  const int m = (b + e) / 2, a = depth & 1;
+  std::array<double, 4> lo, hi;
+  if (e - b >= kParallelSites) {
+#pragma omp task default(shared) firstprivate(b, m, depth)
+    lo = fit(b, m, depth + 1);
+    hi = fit(m + 1, e, depth + 1);
+#pragma omp taskwait
+  } else {
+    lo = fit(b, m, depth + 1);
+    hi = fit(m + 1, e, depth + 1);
+  }
+  split_[m] = {lo[2 * a + 1], hi[2 * a]};
+  add(p_[m]);
+  for (const auto& h : {lo, hi}) {
+    box[0] = std::min(box[0], h[0]);
+    box[1] = std::max(box[1], h[1]);
+    box[2] = std::min(box[2], h[2]);
+    box[3] = std::max(box[3], h[3]);
+  }
+  return box;
+}
+
 void SiteTree::query(const Vec2& lo, const Vec2& hi, std::vector<int>& out) const {
   // iterative, depth first, the lower half before the upper one: the order of the recursion
   struct Range {
@@ -47,7 +92,7 @@ void SiteTree::query(const Vec2& lo, const Vec2& hi, std::vector<int>& out) cons
   const double lx = lo.x(), ly = lo.y(), hx = hi.x(), hy = hi.y();
   while (top > 0) {
     const Range r = stack[--top];
-    if (r.e - r.b <= 8) {
+    if (r.e - r.b <= kLeaf) {
       for (int k = r.b; k < r.e; ++k) {
         const Vec2& p = p_[k];
         if (p.x() >= lx && p.x() <= hx && p.y() >= ly && p.y() <= hy) out.push_back(idx_[k]);
@@ -57,8 +102,8 @@ void SiteTree::query(const Vec2& lo, const Vec2& hi, std::vector<int>& out) cons
     const int m = (r.b + r.e) / 2;
     const Vec2& p = p_[m];
     if (p.x() >= lx && p.x() <= hx && p.y() >= ly && p.y() <= hy) out.push_back(idx_[m]);
-    const double c = p[r.depth & 1];
-    const bool low = (r.depth & 1 ? ly : lx) <= c, high = (r.depth & 1 ? hy : hx) >= c;
+    const Split& s = split_[m];
+    const bool low = (r.depth & 1 ? ly : lx) <= s.lower_max, high = (r.depth & 1 ? hy : hx) >= s.upper_min;
     if (high) stack[top++] = {m + 1, r.e, r.depth + 1};
     if (low) stack[top++] = {r.b, m, r.depth + 1};
   }

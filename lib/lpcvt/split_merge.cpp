@@ -10,18 +10,40 @@
 
 namespace quadapt::lpcvt {
 
+namespace {
+/// Work split into fixed blocks of sites (the same blocks for any thread count), each with its
+/// own point-location hint.
+constexpr int kBlock = 4096;
+}  // namespace
+
 int remove_outside(const Background& bg, std::vector<Vec2>& sites, int nfixed) {
-  DelaunayGraph dt(sites);
-  std::vector<Vec2> kept(sites.begin(), sites.begin() + nfixed);
-  int removed = 0, hint = -1;
-  for (int i = nfixed; i < static_cast<int>(sites.size()); ++i) {
-    int c = bg.locate(sites[i], hint);
-    if (c < 0 || dt.hidden(i)) {
-      ++removed;
-      continue;
+  const int n = static_cast<int>(sites.size());
+  // a site that coincides exactly with an earlier one (the Delaunay graph's "hidden" sites):
+  // the sites sorted by (x, y, index), each compared with the one before
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    const Vec2 &p = sites[a], &q = sites[b];
+    return p.x() != q.x() ? p.x() < q.x() : p.y() != q.y() ? p.y() < q.y() : a < b;
+  });
+  std::vector<char> drop(n, 0);
+  for (int k = 1; k < n; ++k)
+    if (sites[order[k]] == sites[order[k - 1]]) drop[order[k]] = 1;
+  const int nb = (n + kBlock - 1) / kBlock;
+#pragma omp parallel for schedule(dynamic, 1) if (n >= 4 * kBlock)
+  for (int b = 0; b < nb; ++b) {
+    int hint = -1;
+    for (int i = std::max(nfixed, b * kBlock); i < std::min(n, (b + 1) * kBlock); ++i) {
+      const int c = bg.locate(sites[i], hint);
+      if (c < 0) drop[i] = 1;
+      else hint = c;
     }
-    hint = c;
-    kept.push_back(sites[i]);
+  }
+  std::vector<Vec2> kept(sites.begin(), sites.begin() + nfixed);
+  int removed = 0;
+  for (int i = nfixed; i < n; ++i) {
+    if (drop[i]) ++removed;
+    else kept.push_back(sites[i]);
   }
   sites.swap(kept);
   return removed;
@@ -61,17 +83,25 @@ std::vector<MeasuredEdge> measure_edges(const Background& bg, const std::vector<
   if (bg.metric_cells()) {
     // metric cells: the edges of the metric Delaunay graph (the neighbours the energy uses)
     MetricGraph g = build_metric_graph(bg, sites, dt);
-    for (int i = 0; i < g.num_sites(); ++i)
-      for (const int* jp = g.nbr_begin(i); jp != g.nbr_end(i); ++jp) {
-        const int j = *jp;
-        if (j <= i) continue;
-        if (i < nfixed && j < nfixed && bseg.count({i, j})) continue;
-        const int cm = bg.locate(0.5 * (sites[i] + sites[j]), hint);
-        if (cm < 0) continue;
-        hint = cm;
-        const double L = segment_metric_length(bg, sites[i], sites[j], opt.q, opt.samples);
-        if (L >= 0) out.push_back({i, j, L});
-      }
+    // in fixed blocks of sites, in parallel; the blocks' edges joined in order (the serial order)
+    const int n = g.num_sites(), nb = (n + kBlock - 1) / kBlock;
+    std::vector<std::vector<MeasuredEdge>> part(nb);
+#pragma omp parallel for schedule(dynamic, 1) if (n >= 4 * kBlock)
+    for (int b = 0; b < nb; ++b) {
+      int h = -1;
+      for (int i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i)
+        for (const int* jp = g.nbr_begin(i); jp != g.nbr_end(i); ++jp) {
+          const int j = *jp;
+          if (j <= i) continue;
+          if (i < nfixed && j < nfixed && bseg.count({i, j})) continue;
+          const int cm = bg.locate(0.5 * (sites[i] + sites[j]), h);
+          if (cm < 0) continue;
+          h = cm;
+          const double L = segment_metric_length(bg, sites[i], sites[j], opt.q, opt.samples);
+          if (L >= 0) part[b].push_back({i, j, L});
+        }
+    }
+    for (const auto& p : part) out.insert(out.end(), p.begin(), p.end());
     return out;
   }
   // Opposite vertices of each Delaunay edge, for the metric-Delaunay test.

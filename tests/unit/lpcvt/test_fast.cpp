@@ -342,3 +342,42 @@ TEST_CASE("voronoi_alignments: both figures from one diagram, the same for 1 and
   CHECK(std::abs(one[1].mean_deviation - one[0].mean_deviation) > 0.1);  // the two figures differ here
   CHECK(voronoi_alignment(bg, x, nfixed, true).mean_deviation == one[1].mean_deviation);
 }
+
+TEST_CASE("remove_outside: drops free sites outside the domain and later copies of a site, in parallel as serially") {
+  // the L-shape [0,2]^2 minus (1,2]^2; more than 4 blocks of 4,096 sites, so the parallel path runs
+  Background bg = Background::from_frame(
+      [] {
+        Mesh m = l_shape();
+        set_frame(m, 0.1, 0.1, 0);
+        return m;
+      }(),
+      1.0, "mem");
+  int nfixed = 0;
+  std::vector<Vec2> x = boundary_and_random(bg, 20000, 5, nfixed);
+  REQUIRE(nfixed > 0);
+  const std::vector<Vec2> inside(x.begin() + nfixed, x.end());
+  // outside (the notch, the far side) and exact copies: of a fixed site, of a free one twice
+  std::vector<Vec2> extra = {Vec2(1.5, 1.5), Vec2(-0.5, 0.3), x[0], x[nfixed + 7], Vec2(1.9, 1.2), x[nfixed + 7]};
+  // spread them over the blocks
+  std::vector<Vec2> all(x.begin(), x.begin() + nfixed);
+  for (size_t k = 0; k < inside.size(); ++k) {
+    all.push_back(inside[k]);
+    if (k % 3000 == 100 && k / 3000 < extra.size()) all.push_back(extra[k / 3000]);
+  }
+  std::vector<Vec2> one = all, two = all;
+  int r1 = 0, r2 = 0;
+  {
+    const RestoreThreads restore;
+    omp_set_num_threads(1);
+    r1 = remove_outside(bg, one, nfixed);
+    omp_set_num_threads(2);
+    r2 = remove_outside(bg, two, nfixed);
+  }
+  CHECK(r1 == 6);
+  CHECK(r2 == 6);
+  CHECK(one == two);
+  // what is left: the fixed sites and the random inside ones, in their order
+  std::vector<Vec2> want(x.begin(), x.begin() + nfixed);
+  want.insert(want.end(), inside.begin(), inside.end());
+  CHECK(one == want);
+}

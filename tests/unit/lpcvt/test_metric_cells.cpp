@@ -21,6 +21,21 @@ using namespace lpcvt_test;
 
 namespace {
 
+/// The sites of `list` (indices into x) inside the box c +- e, in the list's order.
+std::vector<int> in_box(const std::vector<Vec2>& x, const std::vector<int>& list, const Vec2& c, const Vec2& e) {
+  std::vector<int> out;
+  for (int i : list)
+    if (std::abs(x[i].x() - c.x()) <= e.x() && std::abs(x[i].y() - c.y()) <= e.y()) out.push_back(i);
+  return out;
+}
+
+/// All sites of x inside the box c +- e, ascending (the brute-force answer).
+std::vector<int> in_box(const std::vector<Vec2>& x, const Vec2& c, const Vec2& e) {
+  std::vector<int> all(x.size());
+  for (size_t i = 0; i < x.size(); ++i) all[i] = static_cast<int>(i);
+  return in_box(x, all, c, e);
+}
+
 double area_of(const std::vector<Vec2>& v) {
   double a = 0;
   for (size_t k = 0; k < v.size(); ++k) {
@@ -207,17 +222,12 @@ TEST_CASE("site tree: a box query lists its sites in one fixed order, a larger b
   SiteTree tree(x);
   for (int k = 0; k < 200; ++k) {
     const Vec2 c(u(rng), 0.3 * u(rng)), e(0.05 * u(rng), 0.02 * u(rng));
-    std::vector<int> small, big, brute;
+    std::vector<int> small, big;
     tree.query(c - e, c + e, small);
     tree.query(c - 1.7 * e, c + 1.7 * e, big);
-    for (int i = 0; i < static_cast<int>(x.size()); ++i)
-      if (std::abs(x[i].x() - c.x()) <= e.x() && std::abs(x[i].y() - c.y()) <= e.y()) brute.push_back(i);
-    std::vector<int> filtered;
-    for (int i : big)
-      if (std::abs(x[i].x() - c.x()) <= e.x() && std::abs(x[i].y() - c.y()) <= e.y()) filtered.push_back(i);
-    CHECK(filtered == small);
+    CHECK(in_box(x, big, c, e) == small);
     std::sort(small.begin(), small.end());
-    CHECK(small == brute);
+    CHECK(small == in_box(x, c, e));
   }
 }
 
@@ -236,14 +246,72 @@ TEST_CASE("site tree: built in parallel (subtrees as tasks), the same answers fo
   }
   for (int k = 0; k < 100; ++k) {
     const Vec2 c(u(rng), 0.3 * u(rng)), e(0.02 * u(rng), 0.01 * u(rng));
-    std::vector<int> a, b, brute;
+    std::vector<int> a, b;
     one.query(c - e, c + e, a);
     two.query(c - e, c + e, b);
     CHECK(a == b);  // same sites in the same (pre-)order
-    for (int i = 0; i < static_cast<int>(x.size()); ++i)
-      if (std::abs(x[i].x() - c.x()) <= e.x() && std::abs(x[i].y() - c.y()) <= e.y()) brute.push_back(i);
     std::sort(a.begin(), a.end());
-    CHECK(a == brute);
+    CHECK(a == in_box(x, c, e));
+  }
+}
+
+TEST_CASE("site tree: refitted to moved sites, the queries stay exact and keep the tree's fixed order") {
+  // A minimisation refits the last evaluation's tree (SiteTree::refit). The moves here go from
+  // a fraction of the spacing to the whole square, so halves of a split overlap: a query that
+  // pruned by the build-time split coordinates (not the refitted bounds) misses sites.
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec2> x(5000);
+  for (auto& p : x) p = Vec2(u(rng), u(rng) * u(rng));
+  SiteTree tree(x);
+  {  // refitted to the same sites: the answers of a fresh build, in the same order
+    tree.refit(x);
+    const SiteTree fresh(x);
+    for (int k = 0; k < 50; ++k) {
+      const Vec2 c(u(rng), 0.3 * u(rng)), e(0.05 * u(rng), 0.02 * u(rng));
+      std::vector<int> a, b;
+      tree.query(c - e, c + e, a);
+      fresh.query(c - e, c + e, b);
+      CHECK(a == b);
+    }
+  }
+  for (const double move : {0.002, 0.02, 0.3, 1.0}) {
+    for (auto& p : x) p += move * Vec2(u(rng) - 0.5, u(rng) - 0.5);
+    tree.refit(x);
+    for (int k = 0; k < 100; ++k) {
+      const Vec2 c(u(rng), 0.3 * u(rng)), e(0.05 * u(rng), 0.02 * u(rng));
+      std::vector<int> small, big;
+      tree.query(c - e, c + e, small);
+      tree.query(c - 1.7 * e, c + 1.7 * e, big);
+      CHECK(in_box(x, big, c, e) == small);  // one fixed order, whatever the box
+      std::sort(small.begin(), small.end());
+      CHECK(small == in_box(x, c, e));
+    }
+  }
+}
+
+TEST_CASE("site tree: refitted in parallel, the same answers for 1 and 2 threads") {
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec2> x(60000);  // the refit's top subtrees are tasks from 16,384 sites on
+  for (auto& p : x) p = Vec2(u(rng), u(rng));
+  SiteTree one(x), two(x);
+  for (auto& p : x) p += 0.01 * Vec2(u(rng) - 0.5, u(rng) - 0.5);
+  {
+    const RestoreThreads restore;
+    omp_set_num_threads(1);
+    one.refit(x);
+    omp_set_num_threads(2);
+    two.refit(x);
+  }
+  for (int k = 0; k < 100; ++k) {
+    const Vec2 c(u(rng), u(rng)), e(0.02 * u(rng), 0.02 * u(rng));
+    std::vector<int> a, b;
+    one.query(c - e, c + e, a);
+    two.query(c - e, c + e, b);
+    CHECK(a == b);
+    std::sort(a.begin(), a.end());
+    CHECK(a == in_box(x, c, e));
   }
 }
 

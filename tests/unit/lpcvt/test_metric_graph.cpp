@@ -123,6 +123,7 @@ TEST_CASE("energy with the carried metric graph: the rebuilt graph's energy and 
     for (size_t i = nfixed; i < x.size(); ++i) x[i] += 2e-4 * Vec2(U(rng), U(rng));
   }
   CHECK(wc.timers.carried >= 2);  // the graph was carried (and not only rebuilt)
+  CHECK(wc.timers.tree_refits >= 1);  // ... and the site tree refitted (SiteTree::refit)
   CHECK(wr.timers.carried == 0);
   CHECK(worst_e < 1e-12);
   CHECK(worst_g < 1e-9);
@@ -139,11 +140,13 @@ TEST_CASE("energy with a carried graph that has inverted triangles: still the ex
   carry.carry_inverted = 1;  // carry whatever inverts
   rebuild.carry_metric_graph = false;
   EnergyWorkspace wc(carry), wr(rebuild);
-  lp_energy(bg, x, 6, true, &wc, 1.0);
+  lp_energy(bg, x, 6, true, &wc, 1.0);  // graph built
+  lp_energy(bg, x, 6, true, &wc, 1.0);  // carried; the site tree built
   std::swap(x[nfixed + 10], x[nfixed + 900]);
   const EnergyResult a = lp_energy(bg, x, 6, true, &wc, 1.0);
   const EnergyResult b = lp_energy(bg, x, 6, true, &wr, 1.0);
-  CHECK(wc.timers.carried == 1);
+  CHECK(wc.timers.carried == 2);
+  CHECK(wc.timers.tree_refits == 1);  // that tree refitted to the swapped sites: still exact
   CHECK(a.pieces == b.pieces);
   CHECK(std::abs(a.energy - b.energy) < 1e-12 * b.energy);
   double gmax = 0, dg = 0;
