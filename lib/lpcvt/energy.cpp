@@ -283,6 +283,7 @@ EnergyTimers& EnergyTimers::operator+=(const EnergyTimers& o) {
   rebuilds += o.rebuilds;
   carried += o.carried;
   tree_refits += o.tree_refits;
+  grid_searches += o.grid_searches;
   box_queries += o.box_queries;
   box_hits += o.box_hits;
   return *this;
@@ -386,7 +387,10 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
   } else {
     rvd = std::make_unique<RestrictedVoronoi>(bg, sites);
   }
-  if (ws && bg.metric_cells()) ws->impl->starts = rvd->starts();
+  if (ws && bg.metric_cells()) {
+    ws->impl->starts = rvd->starts();
+    rvd->set_grid_min_sites(ws->settings.grid_min_sites);
+  }
   const auto t1 = Clock::now();
   EnergyResult r = lp_energy(*rvd, bg, p, gradient, ws, gamma);
   const auto t2 = Clock::now();
@@ -397,8 +401,9 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
     T.rebuilds = ws->impl->rebuilds;
     T.carried = ws->impl->carried;
     T.tree_refits = ws->impl->tree_refits;
-    T.box_queries = T.box_hits = 0;
+    T.box_queries = T.box_hits = T.grid_searches = 0;
     for (const auto& th : ws->impl->threads) {
+      T.grid_searches += th.rvd.grid_searches;
       T.box_queries += th.rvd.box_queries;
       T.box_hits += th.rvd.box_hits;
     }

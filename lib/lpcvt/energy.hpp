@@ -72,6 +72,9 @@ struct EnergySettings {
   int tree_refits = 20;            ///< metric cells, carried graph: the site tree of the evaluation
                                    ///< before refitted (SiteTree::refit) this many times in a row,
                                    ///< then built anew (0: always built anew; changes the rounding only)
+  int grid_min_sites = 32;         ///< metric cells: an integration cell with about this many sites or
+                                   ///< more answers its security searches from a bucket grid
+                                   ///< (cell_grid.hpp; 0: the site tree always; the same pieces)
   int min_parallel_sites = 2000;  ///< OpenMP from this many sites on (smaller problems lose more to
                                   ///< thread start-up than they gain); tests set 0 for the parallel path
 };
@@ -84,6 +87,8 @@ struct EnergyTimers {
   long updates = 0, rebuilds = 0;  ///< Delaunay graphs updated by flips / rebuilt
   long carried = 0;                ///< metric cells: metric graphs carried from the evaluation before
   long tree_refits = 0;            ///< ... with the site tree refitted, not built anew
+  long grid_searches = 0;              ///< metric cells' security-radius searches answered by a
+                                       ///< cell's bucket grid (cell_grid.hpp); the others:
   long box_queries = 0, box_hits = 0;  ///< metric cells' security-radius searches: site-tree
                                        ///< queries / answered from a cached box (rvd.hpp)
   EnergyTimers& operator+=(const EnergyTimers& o);

@@ -171,7 +171,8 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
   if (!chk.ok()) throw NumericalError("lpcvt: invalid output triangulation: " + chk.summary());
   const EnergyTimers& et = r.energy_timers;
   rep["energy_seconds"] = {{"delaunay", et.delaunay}, {"integrate", et.integrate}, {"evaluations", et.evaluations},
-                           {"updates", et.updates}, {"rebuilds", et.rebuilds}, {"metric_graph_carried", et.carried}, {"site_tree_refits", et.tree_refits},
+                           {"updates", et.updates}, {"rebuilds", et.rebuilds}, {"metric_graph_carried", et.carried},
+                           {"site_tree_refits", et.tree_refits}, {"security_grid_searches", et.grid_searches},
                            {"security_box_queries", et.box_queries}, {"security_box_hits", et.box_hits}};
   const nlohmann::json figures = to_json(r);
   for (auto& [k, v] : figures.items()) rep[k] = v;

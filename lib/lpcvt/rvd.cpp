@@ -293,6 +293,7 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
   ws.queue.push_back(s0);
   ws.stamp[s0] = gen;
   int count = 0;
+  int grid = mg_ && grid_min_sites_ > 0 ? 0 : -1;  // the cell's grid: 0 not decided, 1 built, -1 none
   for (size_t head = 0; head < ws.queue.size(); ++head) {
     const int i = ws.queue[head];
     if (static_cast<int>(out.size()) <= count) out.emplace_back();
@@ -325,17 +326,42 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
       if (!p.v.empty()) {
         double R2 = 0;
         for (const Vec2& v : p.v) R2 = std::max(R2, (v - x[i]).dot(G * (v - x[i])));
-        const Mat2 Gi = G.inverse();
-        const Vec2 ext(2 * std::sqrt(R2 * Gi(0, 0)), 2 * std::sqrt(R2 * Gi(1, 1)));
-        const std::pair<const int*, const int*> box = security_candidates(i, ext, ws);
-        ws.ring.clear();
-        for (const int* j = box.first; j != box.second; ++j) {
-          if (ws.seen[*j] == sg) continue;
-          const Vec2 d = x[*j] - x[i];
-          if (d.dot(G * d) < 4 * R2) ws.ring.push_back(*j);
+        if (grid == 0) {
+          // decided at the cell's first search, from its size in units of that piece (a site's
+          // cell has metric area ~2 R^2): a grid the size of the spacing, wide enough for the
+          // disks of pieces up to ~1.7x that one's R (larger ones ask the tree)
+          grid = -1;
+          double area = 0;
+          for (int e = 0; e < Q.nv; ++e) {
+            const Vec2 &a = Q.v[e], &b = Q.v[(e + 1) % Q.nv];
+            area += a.x() * b.y() - a.y() * b.x();
+          }
+          area = 0.5 * std::abs(area) * std::sqrt(G.determinant());
+          if (area >= grid_min_sites_ * 2 * R2 &&
+              ws.grid.build(G, Q.v.data(), Q.nv, 4 * std::sqrt(R2), std::sqrt(2 * R2), *tree_, x, 1 << 20)) {
+            grid = 1;
+            ++ws.grid_builds;
+          }
         }
-        // a box query lists its sites in the tree's fixed (pre-)order, so a cached larger box
-        // gives these sites in the order a query of this box would: the same piece
+        ws.ring.clear();
+        ws.cand.clear();
+        auto keep = [&](int j) {
+          if (ws.seen[j] == sg) return;
+          const Vec2 d = x[j] - x[i];
+          if (d.dot(G * d) < 4 * R2) ws.ring.push_back(j);
+        };
+        if (grid == 1 && ws.grid.candidates(x[i], 2 * std::sqrt(R2), ws.cand)) {
+          ++ws.grid_searches;
+          for (int j : ws.cand) keep(j);
+        } else {
+          const Mat2 Gi = G.inverse();
+          const Vec2 ext(2 * std::sqrt(R2 * Gi(0, 0)), 2 * std::sqrt(R2 * Gi(1, 1)));
+          const std::pair<const int*, const int*> box = security_candidates(i, ext, ws);
+          for (const int* j = box.first; j != box.second; ++j) keep(*j);
+        }
+        // the same sites whichever search found them (cell_grid.hpp), clipped in one fixed
+        // order: the same piece
+        std::sort(ws.ring.begin(), ws.ring.end());
         for (int j : ws.ring) {
           clip_by_bisector(p.v, p.label, x[i], x[j], G, j, ws.tmp_v, ws.tmp_l);
           if (p.v.empty()) break;

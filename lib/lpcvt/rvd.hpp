@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "lpcvt/background.hpp"
+#include "lpcvt/cell_grid.hpp"
 #include "lpcvt/delaunay.hpp"
 #include "lpcvt/metric_graph.hpp"
 #include "lpcvt/site_tree.hpp"
@@ -50,7 +51,10 @@ struct RvdWorkspace {
   // metric cells: the sites examined for one piece (security-radius search)
   std::vector<int> seen;    ///< per site: the piece (generation) that last examined it
   int seen_gen = 0;
-  std::vector<int> ring;    ///< sites to clip by (within the security radius), in tree order
+  std::vector<int> ring;    ///< sites to clip by (within the security radius), ascending
+  CellGrid grid;            ///< the current cell's sites in buckets (cell_grid.hpp), when it has many
+  std::vector<int> cand;    ///< the grid's candidates for one piece
+  long grid_builds = 0, grid_searches = 0;  ///< grids built / security searches answered by one
   // the last box query of each site (security_candidates): valid for one RestrictedVoronoi
   long box_owner = 0;               ///< its id
   int box_epoch = 0;
@@ -98,6 +102,11 @@ class RestrictedVoronoi {
   /// All pieces of all cells (serial; for pictures and tests), ordered by cell; with `ws`, that
   /// workspace (its counters) instead of a local one.
   std::vector<RvdPiece> all_pieces(RvdWorkspace* ws = nullptr) const;
+  /// Metric cells: an integration cell that holds about `min_sites` sites or more (its metric
+  /// area over the first piece's) answers its security-radius searches from a bucket grid in
+  /// its metric space (cell_grid.hpp) instead of the site tree; 0: always the tree. The same
+  /// pieces, bit for bit, either way.
+  void set_grid_min_sites(int min_sites) { grid_min_sites_ = min_sites; }
 
  private:
   const Background* bg_;
@@ -110,6 +119,7 @@ class RestrictedVoronoi {
   SiteTree own_tree_;
   const SiteTree* tree_ = nullptr;  ///< metric cells: box queries of the security-radius search
   std::vector<int> start_;
+  int grid_min_sites_ = 0;
   void find_starts();  ///< per integration cell: nearest site to its centroid (in G_Q)
   /// The sites of a box around x_i with half extents at least `ext`: from the workspace's cache
   /// when this thread's last query for site i (this evaluation) covered it, else a site-tree

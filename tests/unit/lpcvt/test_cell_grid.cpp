@@ -1,0 +1,81 @@
+// The security-radius search's bucket grid (lpcvt/cell_grid.hpp): every site of a covered disk
+// among its candidates, uncovered disks refused, and the pieces of RestrictedVoronoi the same
+// bit for bit whether the grid or the site tree answers.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "helpers.hpp"
+#include "lpcvt/cell_grid.hpp"
+#include "lpcvt/metric_graph.hpp"
+#include "lpcvt/rvd.hpp"
+#include "lpcvt/site_tree.hpp"
+
+using namespace lpcvt_test;
+
+TEST_CASE("cell grid: a covered disk's sites are all candidates; a disk reaching outside is refused") {
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec2> x(20000);
+  for (auto& p : x) p = Vec2(u(rng), u(rng));
+  const SiteTree tree(x);
+  // a 10:1 metric at 35 degrees (the ellipses' axis-aligned boxes are far larger than them)
+  const Mat2 M = rotated_metric(0.02, 0.002, 0.61);
+  const Mat2 G = M.transpose() * M;
+  const Vec2 q[4] = {Vec2(0.4, 0.4), Vec2(0.6, 0.42), Vec2(0.58, 0.6), Vec2(0.41, 0.57)};
+  CellGrid grid;
+  REQUIRE(grid.build(G, q, 4, 8.0, 1.5, tree, x, 1 << 20));
+  int covered = 0, refused = 0;
+  for (int k = 0; k < 400; ++k) {
+    const Vec2 c(0.3 + 0.4 * u(rng), 0.3 + 0.4 * u(rng));
+    const double r = 0.5 + 6 * u(rng);  // in metric units
+    std::vector<int> cand;
+    if (!grid.candidates(c, r, cand)) {
+      CHECK(cand.empty());
+      ++refused;
+      continue;
+    }
+    ++covered;
+    std::sort(cand.begin(), cand.end());
+    CHECK(std::adjacent_find(cand.begin(), cand.end()) == cand.end());  // each site once
+    for (int i = 0; i < static_cast<int>(x.size()); ++i) {
+      const Vec2 d = x[i] - c;
+      if (d.dot(G * d) < r * r && !std::binary_search(cand.begin(), cand.end(), i)) {
+        FAIL_CHECK("site " << i << " in the disk but not a candidate");
+        break;
+      }
+    }
+  }
+  CHECK(covered > 50);  // both answers occur
+  CHECK(refused > 50);
+  // a grid finer than max_buckets allows is refused
+  CHECK_FALSE(grid.build(G, q, 4, 8.0, 1e-3, tree, x, 1 << 20));
+  CHECK(grid.empty());
+  std::vector<int> none;
+  CHECK_FALSE(grid.candidates(Vec2(0.5, 0.5), 1.0, none));
+}
+
+TEST_CASE("metric pieces: the bucket grid gives the site tree's pieces, bit for bit") {
+  // a graded, turning frame (helpers.hpp) on 12 x 12 cells with ~70 sites per cell: the grid
+  // answers most searches (and the tree the disks that reach beyond it)
+  const Background bg = graded_metric_background();
+  int nfixed = 0;
+  const std::vector<Vec2> x = boundary_and_random(bg, 10000, 41, nfixed);
+  const MetricGraph mg = build_metric_graph(bg, x, DelaunayGraph(x, true, false));
+  const SiteTree tree(x);
+  RestrictedVoronoi with_tree(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), tree);
+  RestrictedVoronoi with_grid(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), tree);
+  with_grid.set_grid_min_sites(1);
+  RvdWorkspace wt, wg;
+  const std::vector<RvdPiece> a = with_tree.all_pieces(&wt), b = with_grid.all_pieces(&wg);
+  CHECK(wt.grid_searches == 0);
+  CHECK(wg.grid_builds > 100);
+  CHECK(wg.grid_searches > wg.box_queries + wg.box_hits);  // mostly the grid
+  REQUIRE(a.size() == b.size());
+  bool same = true;
+  for (size_t k = 0; k < a.size() && same; ++k)
+    same = a[k].site == b[k].site && a[k].cell == b[k].cell && a[k].v == b[k].v && a[k].label == b[k].label;
+  CHECK(same);
+}
