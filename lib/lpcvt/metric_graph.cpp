@@ -62,28 +62,37 @@ void flip_and_list(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric&
   g.capped = false;
   MetricGraph::Scratch& w = g.scratch;
   // Edge stack, seeded with every interior edge once (t < neighbour), in triangle order
-  // (deterministic).
+  // (deterministic: popped from triangle 0 up).
   std::vector<std::pair<int, int>>& stack = w.stack;
   stack.clear();
-  for (int t = nt - 1; t >= 0; --t)
-    for (int k = 2; k >= 0; --k)
-      if (N[t][k] > t) stack.emplace_back(t, k);
-  // The first test of every edge, in parallel (fixed blocks: the same answers for any thread
-  // count); reused below while neither of the edge's triangles has been flipped.
-  const size_t ninit = stack.size();
-  std::vector<char>& first = w.first;
-  first.clear();
+  // With a metric factory the first test of every edge is made in parallel (fixed blocks of
+  // triangles, one fresh metric per block: the same answers for any thread count) and only the
+  // edges that want a flip are stacked, in the serial seed's order. An edge that passed may be
+  // asked again after a flip nearby: the four outer edges of every flipped quadrilateral are
+  // stacked anyway, and no other edge's test can change. The serial loop then pops only the
+  // flips and their consequences instead of every edge (1.1e6 points: 3.3 million edges an
+  // evaluation, a few thousand flips).
+  size_t ninit = 0;
   if (parallel_metric) {
-    first.resize(ninit);
-    constexpr long kBlock = 4096;
-    const long nblocks = (static_cast<long>(ninit) + kBlock - 1) / kBlock;
+    constexpr int kBlock = 4096;
+    const int nblocks = (nt + kBlock - 1) / kBlock;
+    std::vector<std::vector<std::pair<int, int>>>& part = w.part;
+    if (static_cast<int>(part.size()) < nblocks) part.resize(nblocks);
 #pragma omp parallel for schedule(dynamic, 1) if (nblocks > 4)
-    for (long b = 0; b < nblocks; ++b) {
+    for (int b = 0; b < nblocks; ++b) {
       const EdgeMetric m = parallel_metric();
-      const size_t e = std::min(ninit, static_cast<size_t>((b + 1) * kBlock));
-      for (size_t i = static_cast<size_t>(b * kBlock); i < e; ++i)
-        first[i] = wants_flip(x, V, N, stack[i].first, stack[i].second, m);
+      std::vector<std::pair<int, int>>& out = part[b];
+      out.clear();
+      for (int t = std::min(nt, (b + 1) * kBlock) - 1; t >= b * kBlock; --t)
+        for (int k = 2; k >= 0; --k)
+          if (N[t][k] > t && wants_flip(x, V, N, t, k, m)) out.emplace_back(t, k);
     }
+    for (int b = nblocks - 1; b >= 0; --b) stack.insert(stack.end(), part[b].begin(), part[b].end());
+    ninit = stack.size();
+  } else {
+    for (int t = nt - 1; t >= 0; --t)
+      for (int k = 2; k >= 0; --k)
+        if (N[t][k] > t) stack.emplace_back(t, k);
   }
   std::vector<char>& flipped = w.flipped;
   flipped.assign(parallel_metric ? nt : 0, 0);
@@ -97,11 +106,12 @@ void flip_and_list(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric&
     stack.pop_back();
     const int u = N[t][k];
     if (u < 0) continue;
-    // `entry` is a stack position: one below ninit may have been reused by an entry pushed after
-    // a flip, but those are edges of the flipped triangles t, u only, so `flipped` rejects them
-    // (pushing an edge of an unflipped neighbour would need its own mark)
-    const bool known = entry < ninit && !first.empty() && !flipped[t] && !flipped[u];
-    if (known ? !first[entry] : !wants_flip(x, V, N, t, k, metric)) continue;
+    // `entry` is a stack position: one below ninit is a seed that wanted a flip, unless it has
+    // been reused by an entry pushed after a flip — but those are edges of the flipped triangles
+    // t, u only, so `flipped` rejects them (pushing an edge of an unflipped neighbour would need
+    // its own mark)
+    const bool known = entry < ninit && !flipped[t] && !flipped[u];
+    if (!known && !wants_flip(x, V, N, t, k, metric)) continue;
     const int c = V[t][k], p = V[t][(k + 1) % 3], q = V[t][(k + 2) % 3];
     const int l = index_of(N[u], t);
     const int d = V[u][l];

@@ -51,7 +51,8 @@ struct MetricGraph {
   /// and updates it every time: no allocation once they are large enough). Not part of the graph.
   struct Scratch {
     std::vector<std::pair<int, int>> stack;
-    std::vector<char> first, flipped;
+    std::vector<std::vector<std::pair<int, int>>> part;  ///< per block: its edges that want a flip
+    std::vector<char> flipped;
     std::vector<int> fill;
     std::unordered_set<long long> removed;
   } scratch;
