@@ -147,24 +147,35 @@ void flip_and_list(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric&
     const int u = N[t][(k + 2) % 3];
     return u < 0 || t < u;
   };
-  for (int t = 0; t < nt; ++t) {
+  // counted and filled in parallel (atomic slots): the order within a list depends on the
+  // threads' timing, but every list is sorted below, so the result does not
+  const bool par = nt >= 100000;
+#pragma omp parallel for schedule(static) if (par)
+  for (int t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k)
       if (owns(t, k)) {
+#pragma omp atomic
         ++g.ptr[V[t][k] + 1];
+#pragma omp atomic
         ++g.ptr[V[t][(k + 1) % 3] + 1];
       }
-  }
   for (int i = 0; i < n; ++i) g.ptr[i + 1] += g.ptr[i];
   g.adj.resize(g.ptr[n]);
   {
     std::vector<int>& fill = w.fill;
     fill.assign(g.ptr.begin(), g.ptr.end() - 1);
+#pragma omp parallel for schedule(static) if (par)
     for (int t = 0; t < nt; ++t)
       for (int k = 0; k < 3; ++k)
         if (owns(t, k)) {
           const int a = V[t][k], b = V[t][(k + 1) % 3];
-          g.adj[fill[a]++] = b;
-          g.adj[fill[b]++] = a;
+          int ia, ib;
+#pragma omp atomic capture
+          ia = fill[a]++;
+#pragma omp atomic capture
+          ib = fill[b]++;
+          g.adj[ia] = b;
+          g.adj[ib] = a;
         }
   }
   // sorted (in parallel: each list on its own); duplicates (only where the input has an edge

@@ -182,8 +182,9 @@ std::vector<Vec2> many_points(int n, unsigned seed) {
 }  // namespace
 
 TEST_CASE("metric graph: the parallel first tests give the serial loop's graph, for any thread count") {
-  // 8,000 sites: ~24,000 interior edges, 6 blocks of first tests (the parallel pass needs > 4)
-  const std::vector<Vec2> x0 = many_points(8000, 11);
+  // 60,000 sites: ~120,000 triangles, 30 blocks of first tests (the parallel pass needs > 4) and
+  // the neighbour lists counted and filled in parallel (from 100,000 triangles)
+  const std::vector<Vec2> x0 = many_points(60000, 11);
   const DelaunayGraph dt(x0, true, false);
   TurningMetric serial_m;
   const MetricGraph ref = metric_delaunay(x0, dt.triangles(), [&](const std::array<Vec2, 4>& q) { return serial_m(q); });
