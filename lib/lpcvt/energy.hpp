@@ -72,7 +72,7 @@ struct EnergySettings {
   int tree_refits = 20;            ///< metric cells, carried graph: the site tree of the evaluation
                                    ///< before refitted (SiteTree::refit) this many times in a row,
                                    ///< then built anew (0: always built anew; changes the rounding only)
-  int grid_min_sites = 32;         ///< metric cells: an integration cell with about this many sites or
+  int grid_min_sites = RestrictedVoronoi::kGridMinSites;  ///< metric cells: an integration cell with about this many sites or
                                    ///< more answers its security searches from a bucket grid
                                    ///< (cell_grid.hpp; 0: the site tree always; the same pieces)
   int min_parallel_sites = 2000;  ///< OpenMP from this many sites on (smaller problems lose more to

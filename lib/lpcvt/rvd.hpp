@@ -107,6 +107,7 @@ class RestrictedVoronoi {
   /// its metric space (cell_grid.hpp) instead of the site tree; 0: always the tree. The same
   /// pieces, bit for bit, either way.
   void set_grid_min_sites(int min_sites) { grid_min_sites_ = min_sites; }
+  static constexpr int kGridMinSites = 32;  ///< the default (energy.hpp's EnergySettings too)
 
  private:
   const Background* bg_;
@@ -119,7 +120,7 @@ class RestrictedVoronoi {
   SiteTree own_tree_;
   const SiteTree* tree_ = nullptr;  ///< metric cells: box queries of the security-radius search
   std::vector<int> start_;
-  int grid_min_sites_ = 0;
+  int grid_min_sites_ = kGridMinSites;
   void find_starts();  ///< per integration cell: nearest site to its centroid (in G_Q)
   /// The sites of a box around x_i with half extents at least `ext`: from the workspace's cache
   /// when this thread's last query for site i (this evaluation) covered it, else a site-tree

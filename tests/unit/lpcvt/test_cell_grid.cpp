@@ -67,6 +67,7 @@ TEST_CASE("metric pieces: the bucket grid gives the site tree's pieces, bit for 
   const SiteTree tree(x);
   RestrictedVoronoi with_tree(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), tree);
   RestrictedVoronoi with_grid(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), tree);
+  with_tree.set_grid_min_sites(0);
   with_grid.set_grid_min_sites(1);
   RvdWorkspace wt, wg;
   const std::vector<RvdPiece> a = with_tree.all_pieces(&wt), b = with_grid.all_pieces(&wg);
