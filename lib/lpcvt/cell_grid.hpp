@@ -26,7 +26,7 @@ class CellGrid {
   /// Buckets the sites x whose y = U x lies in the y-bounds of the polygon qv[0..nq) widened
   /// by `margin` on every side (y units), in square buckets of side h; G = U^T U symmetric
   /// positive definite (2 x 2). false (the grid is then empty) when that needs more than
-  /// `max_buckets` buckets.
+  /// `max_buckets` buckets, or G is not positive definite, or h <= 0 or margin < 0.
   bool build(const Mat2& G, const Vec2* qv, int nq, double margin, double h, const SiteTree& tree,
              const std::vector<Vec2>& x, int max_buckets);
   /// Appends to `out` every site in the buckets that the disk |U (y' - xc)| <= r touches (a

@@ -71,7 +71,7 @@ struct EnergySettings {
                                    ///< an evaluation, and 10x that have since the last rebuild
   int tree_refits = 20;            ///< metric cells, carried graph: the site tree of the evaluation
                                    ///< before refitted (SiteTree::refit) this many times in a row,
-                                   ///< then built anew (0: always built anew; changes the rounding only)
+                                   ///< then built anew (0: always built anew; the same pieces either way)
   int grid_min_sites = RestrictedVoronoi::kGridMinSites;  ///< metric cells: an integration cell with about this many sites or
                                    ///< more answers its security searches from a bucket grid
                                    ///< (cell_grid.hpp; 0: the site tree always; the same pieces)

@@ -68,8 +68,9 @@ using EdgeMetric = std::function<Eigen::Matrix2d(const std::array<Vec2, 4>& corn
 
 /// Makes independent EdgeMetric objects (each may keep state, e.g. a point-location hint): with
 /// it, the first in-circle test of every edge is made in parallel (OpenMP, fixed blocks of 4,096
-/// edges, one fresh metric per block), and the serial Lawson loop reuses those answers for edges
-/// whose two triangles no flip has touched. The result does not depend on the thread count. It is
+/// triangles, one fresh metric per block) and only the edges that want a flip are stacked for the
+/// serial Lawson loop (whose flips stack the four outer edges of each flipped quadrilateral as
+/// always). The result does not depend on the thread count. It is
 /// the graph of the call without a factory when the metric's answer does not depend on its state;
 /// a stateful metric may differ there (the background's point location puts a point within its
 /// tolerance of a cell edge in either cell, by where its walk starts), so the two graphs can

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "lpcvt/block_ops.hpp"
 #include "lpcvt/energy.hpp"
 
 namespace quadapt::lpcvt {
@@ -18,40 +19,7 @@ namespace {
 using VecX = Eigen::VectorXd;
 using Index = Eigen::Index;
 
-// The O(n) vector work between evaluations (L-BFGS's two loops, the norms of the stopping rules,
-// the change of variables) in fixed blocks of entries, in parallel; sums are taken per block and
-// then over the blocks in order, so results do not depend on the thread count (and a problem of
-// one block gives the serial loop's bits).
-constexpr Index kBlock = Index(1) << 15;
-
-/// Calls f(b, e) for the blocks [b, e) of [0, n), in parallel when there are several.
-template <class F>
-void for_blocks(Index n, F&& f) {
-  const Index nb = (n + kBlock - 1) / kBlock;
-#pragma omp parallel for schedule(static) if (nb >= 4)
-  for (Index k = 0; k < nb; ++k) f(k * kBlock, std::min(n, (k + 1) * kBlock));
-}
-/// Sum over [0, n) of the blocks' partial sums f(b, e), in block order.
-template <class F>
-double block_sum(Index n, F&& f) {
-  const Index nb = (n + kBlock - 1) / kBlock;
-  if (nb <= 1) return n > 0 ? f(Index(0), n) : 0.0;
-  std::vector<double> part(nb);
-  for_blocks(n, [&](Index b, Index e) { part[b / kBlock] = f(b, e); });
-  double s = 0;
-  for (double v : part) s += v;
-  return s;
-}
-double dot(const VecX& a, const VecX& b) {
-  return block_sum(a.size(), [&](Index s, Index e) { return a.segment(s, e - s).dot(b.segment(s, e - s)); });
-}
-double sqnorm(const VecX& a) {
-  return block_sum(a.size(), [&](Index s, Index e) { return a.segment(s, e - s).squaredNorm(); });
-}
-/// y += c x
-void axpy(double c, const VecX& x, VecX& y) {
-  for_blocks(x.size(), [&](Index s, Index e) { y.segment(s, e - s) += c * x.segment(s, e - s); });
-}
+using namespace blocks;
 }  // namespace
 
 MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, int nfixed, double p,

@@ -186,8 +186,8 @@ void RestrictedVoronoi::find_starts() {
   if (dt_) start_ = dt_->nearest(centroids);  // else the guesses given
   if (!mg_) return;
   if (!tree_) {
-    own_tree_ = SiteTree(*sites_);
-    tree_ = &own_tree_;
+    own_tree_ = std::make_unique<SiteTree>(*sites_);
+    tree_ = own_tree_.get();
   }
   // nearest in G_Q: greedy walk over the metric graph from the Euclidean nearest site (exact for
   // a Delaunay graph of the mapped sites; the centroid then lies in the start site's cell)
@@ -321,15 +321,17 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
         ws.seen[*j] = sg;
         if (!p.v.empty()) clip_by_bisector(p.v, p.label, x[i], x[*j], G, *j, ws.tmp_v, ws.tmp_l);
       }
-      // every site within 2R (the box of the G-ellipse |d|_G < 2R, from the site tree); R
-      // only shrinks as the piece is clipped, so one pass with the first R suffices
+      // every site within 2R (|d|_G < 2R: from the cell's bucket grid, or the box of that
+      // G-ellipse from the site tree); R only shrinks as the piece is clipped, so one pass with
+      // the first R suffices
       if (!p.v.empty()) {
         double R2 = 0;
         for (const Vec2& v : p.v) R2 = std::max(R2, (v - x[i]).dot(G * (v - x[i])));
         if (grid == 0) {
           // decided at the cell's first search, from its size in units of that piece (a site's
-          // cell has metric area ~2 R^2): a grid the size of the spacing, wide enough for the
-          // disks of pieces up to ~1.7x that one's R (larger ones ask the tree)
+          // cell has metric area ~2 R^2): a grid the size of the spacing over Q widened by 4R,
+          // which covers the disks of pieces up to 2x that R whose site is in Q and 1.33x for
+          // sites outside Q; candidates() checks, and a disk it does not cover asks the tree
           grid = -1;
           double area = 0;
           for (int e = 0; e < Q.nv; ++e) {

@@ -83,8 +83,9 @@ class RestrictedVoronoi {
   RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const MetricGraph& mg,
                     std::vector<int> start_guess);
   /// The same with the site tree given (a tree of `sites`, e.g. the last evaluation's refitted by
-  /// SiteTree::refit; kept alive by the caller) instead of built anew. The pieces are the same
-  /// up to rounding: the security searches list their sites in that tree's order.
+  /// SiteTree::refit; kept alive by the caller) instead of built anew. The same pieces, bit for
+  /// bit: the security searches' sites are clipped in ascending index order, whatever tree (or
+  /// grid) lists them.
   RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const MetricGraph& mg,
                     std::vector<int> start_guess, const SiteTree& tree);
 
@@ -117,7 +118,7 @@ class RestrictedVoronoi {
   std::unique_ptr<MetricGraph> own_mg_;
   const DelaunayGraph* dt_ = nullptr;
   const MetricGraph* mg_ = nullptr;
-  SiteTree own_tree_;
+  std::unique_ptr<SiteTree> own_tree_;  ///< when no tree is given (heap: tree_ survives a move)
   const SiteTree* tree_ = nullptr;  ///< metric cells: box queries of the security-radius search
   std::vector<int> start_;
   int grid_min_sites_ = kGridMinSites;

@@ -1,9 +1,12 @@
 #include "lpcvt/site_tree.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
 #include <omp.h>
+
+#include "core/error.hpp"
 
 namespace quadapt::lpcvt {
 
@@ -37,6 +40,7 @@ void SiteTree::build(const std::vector<Vec2>& x, int b, int e, int depth) {
 
 void SiteTree::refit(const std::vector<Vec2>& sites) {
   const int n = static_cast<int>(idx_.size());
+  if (sites.size() != idx_.size()) throw NumericalError("SiteTree::refit: not the tree's number of sites");
   p_.resize(n);
   split_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kParallelSites && !omp_in_parallel())

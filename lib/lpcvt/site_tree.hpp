@@ -2,6 +2,7 @@
 // A static 2-d tree over the sites (balanced, median splits; built in O(n log n)) for box
 // queries: the security-radius search of the metric cells (rvd.hpp) needs every site within
 // an ellipse, which a graph walk cannot guarantee where the frame grades.
+#include <array>
 #include <vector>
 
 #include "mesh/mesh.hpp"
@@ -20,7 +21,8 @@ class SiteTree {
   /// (so its pre-order) and recomputes, bottom-up in O(n), every node's bounds along its split
   /// axis — the largest coordinate of its lower half, the smallest of its upper half — so that
   /// query() stays exact for any positions; it only prunes less as the halves come to overlap.
-  /// A minimisation refits the tree of the last evaluation instead of rebuilding it.
+  /// A minimisation refits the tree of the last evaluation instead of rebuilding it. Throws
+  /// NumericalError when `sites` is not of the tree's size.
   void refit(const std::vector<Vec2>& sites);
   int size() const { return static_cast<int>(idx_.size()); }
 

@@ -18,27 +18,31 @@ constexpr int kBlock = 4096;
 
 int remove_outside(const Background& bg, std::vector<Vec2>& sites, int nfixed) {
   const int n = static_cast<int>(sites.size());
-  // a site that coincides exactly with an earlier one (the Delaunay graph's "hidden" sites):
-  // the sites sorted by (x, y, index), each compared with the one before
-  std::vector<int> order(n);
-  for (int i = 0; i < n; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    const Vec2 &p = sites[a], &q = sites[b];
-    return p.x() != q.x() ? p.x() < q.x() : p.y() != q.y() ? p.y() < q.y() : a < b;
-  });
+  // free sites outside the domain (or not finite), in fixed blocks each with its own hint
   std::vector<char> drop(n, 0);
-  for (int k = 1; k < n; ++k)
-    if (sites[order[k]] == sites[order[k - 1]]) drop[order[k]] = 1;
   const int nb = (n + kBlock - 1) / kBlock;
 #pragma omp parallel for schedule(dynamic, 1) if (n >= 4 * kBlock)
   for (int b = 0; b < nb; ++b) {
     int hint = -1;
     for (int i = std::max(nfixed, b * kBlock); i < std::min(n, (b + 1) * kBlock); ++i) {
-      const int c = bg.locate(sites[i], hint);
+      const int c = sites[i].allFinite() ? bg.locate(sites[i], hint) : -1;
       if (c < 0) drop[i] = 1;
       else hint = c;
     }
   }
+  // then a site that coincides exactly with an earlier one (the Delaunay graph's "hidden"
+  // sites): the others sorted by (x, y, index), each compared with the one before (a copy of a
+  // dropped site is outside too)
+  std::vector<int> order;
+  order.reserve(n);
+  for (int i = 0; i < n; ++i)
+    if (!drop[i]) order.push_back(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    const Vec2 &p = sites[a], &q = sites[b];
+    return p.x() != q.x() ? p.x() < q.x() : p.y() != q.y() ? p.y() < q.y() : a < b;
+  });
+  for (size_t k = 1; k < order.size(); ++k)
+    if (sites[order[k]] == sites[order[k - 1]]) drop[order[k]] = 1;
   std::vector<Vec2> kept(sites.begin(), sites.begin() + nfixed);
   int removed = 0;
   for (int i = nfixed; i < n; ++i) {

@@ -57,8 +57,8 @@ int adjust_count(const Background& bg, std::vector<Vec2>& sites, int nfixed,
                  const std::vector<std::array<int, 2>>& boundary_segments, int target,
                  const SplitMergeOptions& opt);
 
-/// Removes free sites (index >= nfixed) outside the domain, or coinciding with an earlier site;
-/// returns how many.
+/// Removes free sites (index >= nfixed) outside the domain (or not finite), or coinciding with an
+/// earlier site; returns how many.
 int remove_outside(const Background& bg, std::vector<Vec2>& sites, int nfixed);
 
 }  // namespace quadapt::lpcvt

@@ -356,8 +356,10 @@ TEST_CASE("remove_outside: drops free sites outside the domain and later copies 
   std::vector<Vec2> x = boundary_and_random(bg, 20000, 5, nfixed);
   REQUIRE(nfixed > 0);
   const std::vector<Vec2> inside(x.begin() + nfixed, x.end());
-  // outside (the notch, the far side) and exact copies: of a fixed site, of a free one twice
-  std::vector<Vec2> extra = {Vec2(1.5, 1.5), Vec2(-0.5, 0.3), x[0], x[nfixed + 7], Vec2(1.9, 1.2), x[nfixed + 7]};
+  // outside (the notch, the far side), exact copies (of a fixed site, of a free one twice) and
+  // one not finite
+  std::vector<Vec2> extra = {Vec2(1.5, 1.5), Vec2(-0.5, 0.3), x[0], x[nfixed + 7], Vec2(1.9, 1.2), x[nfixed + 7],
+                             Vec2(std::nan(""), 0.5)};
   // spread them over the blocks
   std::vector<Vec2> all(x.begin(), x.begin() + nfixed);
   for (size_t k = 0; k < inside.size(); ++k) {
@@ -373,8 +375,8 @@ TEST_CASE("remove_outside: drops free sites outside the domain and later copies 
     omp_set_num_threads(2);
     r2 = remove_outside(bg, two, nfixed);
   }
-  CHECK(r1 == 6);
-  CHECK(r2 == 6);
+  CHECK(r1 == 7);
+  CHECK(r2 == 7);
   CHECK(one == two);
   // what is left: the fixed sites and the random inside ones, in their order
   std::vector<Vec2> want(x.begin(), x.begin() + nfixed);
