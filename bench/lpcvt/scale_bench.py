@@ -51,6 +51,8 @@ def js(path):
 
 
 def frames(b, env, work, sizes):
+    # run-loop.sh finds the tools on PATH (or BIN): the build's first, whoever calls this
+    env = dict(env, PATH=b + os.pathsep + env.get("PATH", ""))
     shape = os.path.join(work, "loop", "step-6", "shape.msh")
     if not os.path.exists(shape):
         subprocess.run([os.path.join(SRC, "scripts", "loop", "run-loop.sh"), "--case",
