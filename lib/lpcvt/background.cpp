@@ -204,10 +204,12 @@ void Background::finish() {
   area_ = 0;
   metric_area_ = 0;
   const TriangleRule& rule = collapsed_gauss(8);
-  for (const IntegrationCell& ic : cells_) {
+  for (IntegrationCell& ic : cells_) {
+    ic.area = 0;
     for (int t = 1; t + 1 < ic.nv; ++t) {
       const Vec2 &a = ic.v[0], &b = ic.v[t], &c = ic.v[t + 1];
       double at = 0.5 * cross(b - a, c - a);
+      ic.area += at;
       area_ += at;
       if (!analytic_) {
         metric_area_ += at * std::abs(ic.M.determinant());

@@ -79,6 +79,7 @@ struct IntegrationCell {
   std::array<Vec2, 4> v;  ///< vertices, CCW
   int nv = 4;             ///< 3 or 4
   int mesh_cell = -1;     ///< the background cell it belongs to
+  double area = 0;        ///< its area (set by the Background)
   Mat2 M = Mat2::Zero();  ///< effective metric (constant mode; analytic mode: M at centroid)
 };
 

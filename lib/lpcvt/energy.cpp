@@ -376,7 +376,7 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
         W.tree = std::make_unique<SiteTree>(sites);
         W.tree_age = 0;
       }
-      rvd = std::make_unique<RestrictedVoronoi>(bg, sites, *W.mg, W.starts, *W.tree);
+      rvd = std::make_unique<RestrictedVoronoi>(bg, sites, *W.mg, W.starts, W.tree.get());
     } else if (metric) {
       W.tree.reset();
       W.mg = std::make_unique<MetricGraph>(build_metric_graph(bg, sites, *W.dt));

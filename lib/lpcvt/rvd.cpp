@@ -157,19 +157,11 @@ RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec
 }
 
 RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const MetricGraph& mg,
-                                     std::vector<int> start_guess)
-    : bg_(&bg), sites_(&sites), id_(next_rvd_id++), mg_(&mg), start_(std::move(start_guess)) {
+                                     std::vector<int> start_guess, const SiteTree* tree)
+    : bg_(&bg), sites_(&sites), id_(next_rvd_id++), mg_(&mg), tree_(tree), start_(std::move(start_guess)) {
   if (static_cast<int>(start_.size()) != bg.num_cells())
     throw NumericalError("RestrictedVoronoi: one start guess per integration cell expected");
-  find_starts();
-}
-
-RestrictedVoronoi::RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const MetricGraph& mg,
-                                     std::vector<int> start_guess, const SiteTree& tree)
-    : bg_(&bg), sites_(&sites), id_(next_rvd_id++), mg_(&mg), tree_(&tree), start_(std::move(start_guess)) {
-  if (static_cast<int>(start_.size()) != bg.num_cells())
-    throw NumericalError("RestrictedVoronoi: one start guess per integration cell expected");
-  if (tree.size() != static_cast<int>(sites.size()))
+  if (tree && tree->size() != static_cast<int>(sites.size()))
     throw NumericalError("RestrictedVoronoi: the site tree is not of these sites");
   find_starts();
 }
@@ -333,13 +325,7 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
           // which covers the disks of pieces up to 2x that R whose site is in Q and 1.33x for
           // sites outside Q; candidates() checks, and a disk it does not cover asks the tree
           grid = -1;
-          double area = 0;
-          for (int e = 0; e < Q.nv; ++e) {
-            const Vec2 &a = Q.v[e], &b = Q.v[(e + 1) % Q.nv];
-            area += a.x() * b.y() - a.y() * b.x();
-          }
-          area = 0.5 * std::abs(area) * std::sqrt(G.determinant());
-          if (area >= grid_min_sites_ * 2 * R2 &&
+          if (Q.area * std::sqrt(G.determinant()) >= grid_min_sites_ * 2 * R2 &&
               ws.grid.build(G, Q.v.data(), Q.nv, 4 * std::sqrt(R2), std::sqrt(2 * R2), *tree_, x, 1 << 20)) {
             grid = 1;
             ++ws.grid_builds;

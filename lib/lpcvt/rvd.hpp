@@ -80,14 +80,12 @@ class RestrictedVoronoi {
   /// Metric cells without a Delaunay graph (e.g. `mg` carried by update_metric_graph): the start
   /// site of every integration cell from `start_guess` (any site per cell, e.g. the last
   /// evaluation's starts(); the same starts result), refined as always. delaunay() is not available.
+  /// `tree`: a site tree of `sites` (e.g. the last evaluation's refitted by SiteTree::refit; kept
+  /// alive by the caller), else one is built. The same pieces, bit for bit, either way: the
+  /// security searches' sites are clipped in ascending index order, whatever tree (or grid)
+  /// lists them.
   RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const MetricGraph& mg,
-                    std::vector<int> start_guess);
-  /// The same with the site tree given (a tree of `sites`, e.g. the last evaluation's refitted by
-  /// SiteTree::refit; kept alive by the caller) instead of built anew. The same pieces, bit for
-  /// bit: the security searches' sites are clipped in ascending index order, whatever tree (or
-  /// grid) lists them.
-  RestrictedVoronoi(const Background& bg, const std::vector<Vec2>& sites, const MetricGraph& mg,
-                    std::vector<int> start_guess, const SiteTree& tree);
+                    std::vector<int> start_guess, const SiteTree* tree = nullptr);
 
   const DelaunayGraph& delaunay() const { return *dt_; }
   /// Per integration cell: the site nearest to its centroid in G_Q (-1: none).

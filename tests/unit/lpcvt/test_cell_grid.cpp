@@ -65,8 +65,8 @@ TEST_CASE("metric pieces: the bucket grid gives the site tree's pieces, bit for 
   const std::vector<Vec2> x = boundary_and_random(bg, 10000, 41, nfixed);
   const MetricGraph mg = build_metric_graph(bg, x, DelaunayGraph(x, true, false));
   const SiteTree tree(x);
-  RestrictedVoronoi with_tree(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), tree);
-  RestrictedVoronoi with_grid(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), tree);
+  RestrictedVoronoi with_tree(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), &tree);
+  RestrictedVoronoi with_grid(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), &tree);
   with_tree.set_grid_min_sites(0);
   with_grid.set_grid_min_sites(1);
   RvdWorkspace wt, wg;
