@@ -100,9 +100,13 @@ int main(int argc, char** argv) {
                "default; --precondition=false: off, --analytic's default)");
   app.add_option("--delta", opt.lbfgs.delta, "Stop when the energy falls by less than this (relative) over --past iterations (1e-10 with --analytic)")
       ->capture_default_str();
-  app.add_option("--past", opt.lbfgs.past, "Iterations of the --delta and --move-tol tests (5 with --analytic)")->capture_default_str();
+  app.add_option("--past", opt.lbfgs.past, "Iterations of the --delta, --move-tol and --edge-tol tests (5 with --analytic)")->capture_default_str();
   app.add_option("--move-tol", opt.lbfgs.move_tol, "Stop when the points moved by less than this over --past iterations "
                  "(RMS, in units of the local point spacing; 0 = off, --analytic's default)")->capture_default_str();
+  app.add_option("--edge-tol", opt.lbfgs.edge_tol, "Stop when the mesh has settled: the edges between neighbouring "
+                 "points changed by less than this over --past iterations (RMS change of the edge vectors in the "
+                 "metric, in target edges; a drift of the whole point set does not count; 0 = off, --analytic's default)")
+      ->capture_default_str();
   app.add_option("--gtol", opt.lbfgs.gtol, "Gradient tolerance (per site, relative)")->capture_default_str();
   app.add_option("--lmin", opt.split.lmin, "Merge edges shorter than this (metric units, eq. 4.12; 0 with --analytic)")->capture_default_str();
   app.add_option("--lmax", opt.split.lmax, "Split edges longer than this (sqrt(2) with --analytic)")->capture_default_str();

@@ -48,6 +48,7 @@ const std::vector<OptionRange>& option_ranges() {
       {"lpcvt",          "--delta",                 0,     1,     false, true},
       {"lpcvt",          "--past",                  1,     kInf,  false, false},
       {"lpcvt",          "--move-tol",              0,     kInf,  false, false},
+      {"lpcvt",          "--edge-tol",              0,     kInf,  false, false},
       {"lpcvt",          "--gtol",                  0,     kInf,  false, false},
       {"lpcvt",          "--lmin",                  0,     kInf,  false, false},
       {"lpcvt",          "--lmax",                  0,     kInf,  true,  false},

@@ -413,6 +413,22 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
   return r;
 }
 
+std::vector<std::pair<int, int>> last_graph_edges(const EnergyWorkspace& ws) {
+  std::vector<std::pair<int, int>> e;
+  const EnergyWorkspace::Impl& W = *ws.impl;
+  auto collect = [&](const auto& g) {
+    for (int i = 0; i < g.num_sites(); ++i)
+      for (const int* j = g.nbr_begin(i); j != g.nbr_end(i); ++j)
+        if (i < *j) e.emplace_back(i, *j);
+  };
+  if (W.mg)
+    collect(*W.mg);
+  else if (W.dt)
+    collect(*W.dt);
+  std::sort(e.begin(), e.end());
+  return e;
+}
+
 double piece_energy(const RvdPiece& piece, const Background& bg, const Vec2& x_site, double p) {
   std::vector<Vec2> x(static_cast<size_t>(piece.site) + 1, x_site);
   std::vector<Vec2> G, acc;

@@ -48,6 +48,7 @@
 // cell order, so the result does not depend on the thread count. An EnergyWorkspace keeps the
 // buffers between evaluations (no allocation once warm).
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "lpcvt/background.hpp"
@@ -115,6 +116,10 @@ EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, doubl
 /// Convenience: builds the restricted Voronoi diagram of `sites` first.
 EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, double p,
                        bool gradient = true, EnergyWorkspace* ws = nullptr, double gamma = 0);
+
+/// The edges {i, j} (i < j, sorted) of the neighbour graph of the workspace's last evaluation:
+/// the metric graph with metric cells, else the Delaunay graph; empty before any evaluation.
+std::vector<std::pair<int, int>> last_graph_edges(const EnergyWorkspace& ws);
 
 /// Energy of one piece (tests): integral over the piece of |M (y - x_site)|_p^p.
 double piece_energy(const RvdPiece& piece, const Background& bg, const Vec2& x_site, double p);

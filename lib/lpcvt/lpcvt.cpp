@@ -115,6 +115,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
     c.converged = last.converged;
     c.stop = last.stop;
     c.window_move = last.window_move;
+    c.window_edge_change = last.window_edge_change;
     c.points = static_cast<int>(sites.size());
     r.iterations += last.iterations;
     r.evaluations += last.evaluations;
@@ -337,6 +338,7 @@ nlohmann::json to_json(const LpcvtResult& r) {
                    {"evaluations", c.evaluations}, {"energy", c.energy}, {"grad_norm", c.grad_norm},
                    {"converged", c.converged}, {"stop", c.stop}, {"points", c.points},
                    {"window_move", c.window_move >= 0 ? json(c.window_move) : json(nullptr)},
+                   {"window_edge_change", c.window_edge_change >= 0 ? json(c.window_edge_change) : json(nullptr)},
                    {"edges", c.split.edges}, {"splits", c.split.splits}, {"merges", c.split.merges},
                    {"removed", c.split.removed_outside}, {"change_fraction", c.split.change_fraction()},
                    {"tolerance", c.tolerance}, {"level", c.level}, {"edge_length_min", c.split.min_length},
@@ -351,7 +353,7 @@ nlohmann::json to_json(const LpcvtResult& r) {
   j["levels"] = lv;
   json h = {{"cycle", json::array()}, {"iteration", json::array()}, {"energy", json::array()},
             {"grad_norm", json::array()}, {"step", json::array()}, {"points", json::array()},
-            {"window_move", json::array()}};
+            {"window_move", json::array()}, {"window_edge_change", json::array()}};
   for (const IterationRecord& it : r.history) {
     h["cycle"].push_back(it.cycle);
     h["iteration"].push_back(it.iteration);
@@ -360,6 +362,7 @@ nlohmann::json to_json(const LpcvtResult& r) {
     h["step"].push_back(it.step);
     h["points"].push_back(it.points);
     h["window_move"].push_back(it.window_move >= 0 ? json(it.window_move) : json(nullptr));
+    h["window_edge_change"].push_back(it.window_edge_change >= 0 ? json(it.window_edge_change) : json(nullptr));
   }
   j["history"] = h;
   return j;

@@ -96,6 +96,7 @@ struct CycleRecord {
   bool converged = false;       ///< of the minimisation
   std::string stop;             ///< of the minimisation
   double window_move = -1;      ///< of the minimisation: the last RMS metric displacement over `past` iterations
+  double window_edge_change = -1;  ///< ... and the last RMS metric change of the graph's edge vectors
   int points = 0;               ///< sites after the split/merge
   SplitMergeResult split;       ///< zero for the polish step
   double tolerance = 0;         ///< change tolerance used for this cycle

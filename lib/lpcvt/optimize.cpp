@@ -22,6 +22,22 @@ using Index = Eigen::Index;
 using namespace blocks;
 }  // namespace
 
+double edge_change_rms(const std::vector<std::pair<int, int>>& edges, const std::vector<Mat2>& M,
+                       const std::vector<Vec2>& d) {
+  const Index ne = static_cast<Index>(edges.size());
+  if (ne == 0) return 0.0;
+  const double s = block_sum(ne, [&](Index b, Index e) {
+    double t = 0;
+    for (Index k = b; k < e; ++k) {
+      const auto [i, j] = edges[k];
+      const Vec2 dd = d[j] - d[i];
+      t += 0.5 * ((M[i] * dd).squaredNorm() + (M[j] * dd).squaredNorm());
+    }
+    return t;
+  });
+  return std::sqrt(s / ne);
+}
+
 MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, int nfixed, double p,
                                const LbfgsOptions& opt, std::vector<IterationRecord>* history,
                                int cycle, const std::function<void(const IterationRecord&)>& on_iteration) {
@@ -112,6 +128,30 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
   // Starting point and energy scale.
   VecX z = VecX::Zero(2 * nfree), g;
   const double e0 = f(z, g);
+  // "mesh settled": the start's neighbour graph (edges with a free end) and every site's metric
+  // at its start position
+  std::vector<std::pair<int, int>> gedges;
+  std::vector<Mat2> Ms;
+  std::vector<Vec2> dwin;  // a window's move, all sites (fixed: zero)
+  if (opt.past > 0) {
+    for (const auto& e : last_graph_edges(ews))
+      if (e.second >= nfixed) gedges.push_back(e);
+    Ms.resize(n);
+    int hint = -1;
+    for (int i = 0; i < n; ++i) {
+      int c = bg.locate(x0[i], hint);
+      if (c < 0) c = hint >= 0 ? hint : 0;
+      hint = c;
+      Ms[i] = bg.metric(c, x0[i]);
+    }
+    dwin.assign(n, Vec2::Zero());
+  }
+  auto window_edges = [&](const VecX& dz) {
+    for_blocks(nfree, [&](Index b, Index e) {
+      for (Index i = b; i < e; ++i) dwin[nfixed + i] = P[i] * Vec2(dz[2 * i], dz[2 * i + 1]);
+    });
+    return edge_change_rms(gedges, Ms, dwin);
+  };
   escale = (e0 > 0 && std::isfinite(e0)) ? e0 / nfree : 1.0;
   g /= escale;  // re-express in the new scale (f was computed with escale = 1)
   double fx = e0 / escale;
@@ -160,6 +200,11 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
     }
     if (window_checked && opt.move_tol > 0 && res.window_move <= opt.move_tol) {
       res.stop = "points settled";
+      res.converged = true;
+      break;
+    }
+    if (window_checked && opt.edge_tol > 0 && res.window_edge_change <= opt.edge_tol) {
+      res.stop = "mesh settled";
       res.converged = true;
       break;
     }
@@ -232,8 +277,12 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
     record(fx, g, displacement(s));
     if (opt.past > 0 && iter % opt.past == 0) {
       res.window_move = metric_rms(z - zsnap);
+      res.window_edge_change = window_edges(z - zsnap);
       zsnap = z;
-      if (history) history->back().window_move = res.window_move;
+      if (history) {
+        history->back().window_move = res.window_move;
+        history->back().window_edge_change = res.window_edge_change;
+      }
       window_checked = true;
     }
     if (sy > 1e-12 * sqnorm(y)) {

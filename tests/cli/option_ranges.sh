@@ -20,6 +20,7 @@ expect_exit 2 "--scale: -1 is not in (0, inf)" lpcvt frame.msh -o x.msh --scale 
 expect_exit 2 "--scale: 0 is not in (0, inf)" lpcvt frame.msh -o x.msh --scale 0
 expect_exit 2 "--scale: inf is not a finite number" lpcvt frame.msh -o x.msh --scale inf
 expect_exit 2 "--move-tol: -0.1 is not in [0, inf)" lpcvt frame.msh -o x.msh --move-tol -0.1
+expect_exit 2 "--edge-tol: -0.1 is not in [0, inf)" lpcvt frame.msh -o x.msh --edge-tol -0.1
 expect_exit 2 "--complexity" size-solve shape.msh --complexity -3 -o x.msh
 expect_exit 2 "--fraction" refine m.msh --by u --fraction 1.5 -o x.msh
 expect_exit 2 "--sweeps: must be >= 0 (got -1)" quadsmooth m.msh --sweeps -1 -o x.msh

@@ -10,6 +10,7 @@
 #include "helpers.hpp"
 #include "lpcvt/energy.hpp"
 #include "lpcvt/lpcvt.hpp"
+#include "lpcvt/optimize.hpp"
 #include "lpcvt/point_quality.hpp"
 #include "lpcvt/triangulate.hpp"
 
@@ -243,42 +244,124 @@ TEST_CASE("deterministic for a seed, and independent of the thread count") {
   CHECK(c.initial_sites != a.initial_sites);
 }
 
-TEST_CASE("points settled: the stop comes at the first window whose RMS metric move is below move_tol") {
-  // 10:1 frame at 30 degrees, random start: the sites move a lot at first, then settle
-  Mesh m = quadapt::make_structured_quads(4, 4);
-  set_frame(m, 0.02, 0.2, 0.5);
-  Background bg = Background::from_frame(m, 1.0, "mem");
-  std::vector<Vec2> x0 = random_inside(bg, 150, 7);
+TEST_CASE("edge_change_rms: zero for a translation, the strain for a stretch, M^T M only") {
+  // a 3 x 3 unit lattice, its 12 axis edges
+  std::vector<std::pair<int, int>> edges;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const int i = 3 * r + c;
+      if (c < 2) edges.emplace_back(i, i + 1);
+      if (r < 2) edges.emplace_back(i, i + 3);
+    }
+  std::vector<Vec2> x(9);
+  for (int i = 0; i < 9; ++i) x[i] = Vec2(i % 3, i / 3);
+  std::vector<Mat2> M(9, Mat2::Identity());
+  std::vector<Vec2> d(9, Vec2(0.3, -0.7));
+  CHECK(edge_change_rms(edges, M, d) == 0.0);  // a drift of the whole set changes no edge
+  for (int i = 0; i < 9; ++i) d[i] = 0.1 * x[i];  // stretch by 1.1: every unit edge grows by 0.1
+  CHECK(edge_change_rms(edges, M, d) == doctest::Approx(0.1).epsilon(1e-14));
+  // a metric twice as fine doubles it; a reflected one (det < 0, as PHiLiP's frames store) is the same
+  std::vector<Mat2> M2(9, 2.0 * Mat2::Identity()), R(9);
+  for (auto& m : R) m << 0, 2, 2, 0;
+  CHECK(edge_change_rms(edges, M2, d) == doctest::Approx(0.2).epsilon(1e-14));
+  CHECK(edge_change_rms(edges, R, d) == doctest::Approx(0.2).epsilon(1e-14));
+  // one end's metric only: the mean of the two ends' squares
+  std::vector<Mat2> Mh = M;
+  Mh[4] = 3.0 * Mat2::Identity();  // the centre: 4 of the 12 edges
+  for (int i = 0; i < 9; ++i) d[i] = Vec2::Zero();
+  d[4] = Vec2(0.1, 0);  // each of its 4 edges changes by 0.1
+  const double want = std::sqrt(4 * 0.5 * (0.01 + 0.09) / 12);
+  CHECK(edge_change_rms(edges, Mh, d) == doctest::Approx(want).epsilon(1e-14));
+  CHECK(edge_change_rms({}, M, d) == 0.0);
+}
+
+namespace {
+/// The stop rules' case: a 10:1 frame at 30 degrees and a random start (the sites move a lot at
+/// first, then settle); only the rule under test can stop the minimisation before the cap.
+struct SettleCase {
+  Background bg;
+  std::vector<Vec2> x0;
   LbfgsOptions o;
-  o.gamma = 1;
-  o.past = 5;
-  o.move_tol = 0.02;
-  o.gtol = 0;
-  o.delta = 0;  // only the new rule can stop it before the cap
-  o.max_iterations = 1000;
-  std::vector<Vec2> x = x0;
-  const MinimizeResult r = minimize_energy(bg, x, 0, 6, o);
-  REQUIRE(r.stop == "points settled");
-  CHECK(r.converged);
-  REQUIRE(r.iterations % o.past == 0);
-  REQUIRE(r.iterations >= 2 * o.past);
-  CHECK(r.window_move <= o.move_tol);
-  // the same trajectory cut one and two windows earlier (no move_tol): the windows' moves,
-  // computed here from the sites, M at the start positions (a single cell metric here)
-  auto at = [&](int k) {
+  SettleCase() : bg(make_bg()), x0(random_inside(bg, 150, 7)) {
+    o.gamma = 1;
+    o.past = 5;
+    o.gtol = 0;
+    o.delta = 0;
+    o.max_iterations = 1000;
+  }
+  static Background make_bg() {
+    Mesh m = quadapt::make_structured_quads(4, 4);
+    set_frame(m, 0.02, 0.2, 0.5);
+    return Background::from_frame(m, 1.0, "mem");
+  }
+  /// The same trajectory cut after k iterations (no settle rule).
+  std::vector<Vec2> cut(int k) const {
     std::vector<Vec2> y = x0;
     LbfgsOptions c = o;
-    c.move_tol = 0;
+    c.move_tol = c.edge_tol = 0;
     c.max_iterations = k;
     minimize_energy(bg, y, 0, 6, c);
     return y;
+  }
+};
+}  // namespace
+
+TEST_CASE("mesh settled: the stop comes at the first window whose edge change is below edge_tol") {
+  SettleCase sc;
+  sc.o.edge_tol = 0.02;
+  std::vector<Vec2> x = sc.x0;
+  std::vector<IterationRecord> hist;
+  const MinimizeResult r = minimize_energy(sc.bg, x, 0, 6, sc.o, &hist);
+  REQUIRE(r.stop == "mesh settled");
+  CHECK(r.converged);
+  REQUIRE(r.iterations % sc.o.past == 0);
+  REQUIRE(r.iterations >= 2 * sc.o.past);
+  CHECK(r.window_edge_change <= sc.o.edge_tol);
+  CHECK(hist.back().window_edge_change == r.window_edge_change);
+  // the start's neighbour graph (the first evaluation's) and the trajectory cut one and two
+  // windows earlier: the last two windows' edge changes from the sites (one cell metric here)
+  EnergyWorkspace ws(sc.o.energy);
+  lp_energy(sc.bg, sc.x0, 6, false, &ws, sc.o.gamma);
+  const std::vector<std::pair<int, int>> edges = last_graph_edges(ws);
+  REQUIRE(edges.size() > 150);
+  const std::vector<Vec2> y1 = sc.cut(r.iterations - sc.o.past), y2 = sc.cut(r.iterations - 2 * sc.o.past);
+  const std::vector<Mat2> M(x.size(), sc.bg.cell(0).M);
+  auto change = [&](const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+    std::vector<Vec2> d(a.size());
+    for (size_t i = 0; i < a.size(); ++i) d[i] = a[i] - b[i];
+    return edge_change_rms(edges, M, d);
   };
-  const std::vector<Vec2> y1 = at(r.iterations - o.past), y2 = at(r.iterations - 2 * o.past);
+  CHECK(change(x, y1) == doctest::Approx(r.window_edge_change).epsilon(1e-9));
+  CHECK(change(y1, y2) > sc.o.edge_tol);  // the previous window did not stop it
+  // the same run under the move rule at the same tolerance stops later: the points drift while
+  // the edges have settled
+  std::vector<Vec2> xm = sc.x0;
+  LbfgsOptions om = sc.o;
+  om.edge_tol = 0;
+  om.move_tol = sc.o.edge_tol;
+  const MinimizeResult rm = minimize_energy(sc.bg, xm, 0, 6, om);
+  REQUIRE(rm.stop == "points settled");
+  CHECK(rm.iterations >= r.iterations);
+}
+
+TEST_CASE("points settled: the stop comes at the first window whose RMS metric move is below move_tol") {
+  SettleCase sc;
+  sc.o.move_tol = 0.02;
+  std::vector<Vec2> x = sc.x0;
+  const MinimizeResult r = minimize_energy(sc.bg, x, 0, 6, sc.o);
+  REQUIRE(r.stop == "points settled");
+  CHECK(r.converged);
+  REQUIRE(r.iterations % sc.o.past == 0);
+  REQUIRE(r.iterations >= 2 * sc.o.past);
+  CHECK(r.window_move <= sc.o.move_tol);
+  // the same trajectory cut one and two windows earlier: the windows' moves, computed here from
+  // the sites, M at the start positions (a single cell metric here)
+  const std::vector<Vec2> y1 = sc.cut(r.iterations - sc.o.past), y2 = sc.cut(r.iterations - 2 * sc.o.past);
   auto rms = [&](const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
     double s = 0;
-    for (size_t i = 0; i < a.size(); ++i) s += (bg.cell(0).M * (a[i] - b[i])).squaredNorm();
+    for (size_t i = 0; i < a.size(); ++i) s += (sc.bg.cell(0).M * (a[i] - b[i])).squaredNorm();
     return std::sqrt(s / a.size());
   };
   CHECK(rms(x, y1) == doctest::Approx(r.window_move).epsilon(1e-9));
-  CHECK(rms(y1, y2) > o.move_tol);  // the previous window did not stop it
+  CHECK(rms(y1, y2) > sc.o.move_tol);  // the previous window did not stop it
 }
