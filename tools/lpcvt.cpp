@@ -105,7 +105,8 @@ int main(int argc, char** argv) {
                  "(RMS, in units of the local point spacing; 0 = off, --analytic's default)")->capture_default_str();
   app.add_option("--edge-tol", opt.lbfgs.edge_tol, "Stop when the mesh has settled: the edges between neighbouring "
                  "points changed by less than this over --past iterations (RMS change of the edge vectors in the "
-                 "metric, in target edges; a drift of the whole point set does not count; 0 = off, --analytic's default)")
+                 "metric, in target edges; a drift of the whole point set does not count; whichever of --move-tol and "
+                 "--edge-tol holds first stops; 0 = off, --analytic's default)")
       ->capture_default_str();
   app.add_option("--gtol", opt.lbfgs.gtol, "Gradient tolerance (per site, relative)")->capture_default_str();
   app.add_option("--lmin", opt.split.lmin, "Merge edges shorter than this (metric units, eq. 4.12; 0 with --analytic)")->capture_default_str();
