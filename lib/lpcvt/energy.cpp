@@ -425,7 +425,6 @@ std::vector<std::pair<int, int>> last_graph_edges(const EnergyWorkspace& ws) {
     collect(*W.mg);
   else if (W.dt)
     collect(*W.dt);
-  std::sort(e.begin(), e.end());
   return e;
 }
 

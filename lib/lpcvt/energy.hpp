@@ -117,8 +117,10 @@ EnergyResult lp_energy(const RestrictedVoronoi& rvd, const Background& bg, doubl
 EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, double p,
                        bool gradient = true, EnergyWorkspace* ws = nullptr, double gamma = 0);
 
-/// The edges {i, j} (i < j, sorted) of the neighbour graph of the workspace's last evaluation:
-/// the metric graph with metric cells, else the Delaunay graph; empty before any evaluation.
+/// The edges {i, j} of the neighbour graph of the workspace's last evaluation, each once (i < j),
+/// by i and then in the order of i's neighbour list (the metric graph's lists are sorted, so
+/// there the pairs are too): the metric graph with metric cells, else the Delaunay graph; empty
+/// before any evaluation.
 std::vector<std::pair<int, int>> last_graph_edges(const EnergyWorkspace& ws);
 
 /// Energy of one piece (tests): integral over the piece of |M (y - x_site)|_p^p.

@@ -73,16 +73,21 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
   }
   // Metric of every free site at its start position, times P: |MP_i dz_i| is the site's
   // displacement in units of the local point spacing (M_eff has unit spacing).
-  std::vector<Mat2> MP(nfree);
-  {
+  // Ms: every site's metric at its start position (fixed sites too: the edge measure of "mesh
+  // settled" below).
+  std::vector<Mat2> Ms(n), MP(nfree);
+  auto metrics_at_start = [&](int b, int e) {
     int hint = -1;
-    for (int i = 0; i < nfree; ++i) {
-      int c = bg.locate(x0[nfixed + i], hint);
+    for (int i = b; i < e; ++i) {
+      int c = bg.locate(x0[i], hint);
       if (c < 0) c = hint >= 0 ? hint : 0;
       hint = c;
-      MP[i] = bg.metric(c, x0[nfixed + i]) * P[i];
+      Ms[i] = bg.metric(c, x0[i]);
     }
-  }
+  };
+  metrics_at_start(nfixed, n);
+  metrics_at_start(0, nfixed);
+  for (int i = 0; i < nfree; ++i) MP[i] = Ms[nfixed + i] * P[i];
   auto metric_rms = [&](const VecX& dz) {
     const double s = block_sum(nfree, [&](Index b, Index e) {
       double t = 0;
@@ -128,22 +133,12 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
   // Starting point and energy scale.
   VecX z = VecX::Zero(2 * nfree), g;
   const double e0 = f(z, g);
-  // "mesh settled": the start's neighbour graph (edges with a free end) and every site's metric
-  // at its start position
+  // "mesh settled": the start's neighbour graph (edges with a free end)
   std::vector<std::pair<int, int>> gedges;
-  std::vector<Mat2> Ms;
   std::vector<Vec2> dwin;  // a window's move, all sites (fixed: zero)
   if (opt.past > 0) {
     for (const auto& e : last_graph_edges(ews))
       if (e.second >= nfixed) gedges.push_back(e);
-    Ms.resize(n);
-    int hint = -1;
-    for (int i = 0; i < n; ++i) {
-      int c = bg.locate(x0[i], hint);
-      if (c < 0) c = hint >= 0 ? hint : 0;
-      hint = c;
-      Ms[i] = bg.metric(c, x0[i]);
-    }
     dwin.assign(n, Vec2::Zero());
   }
   auto window_edges = [&](const VecX& dz) {
