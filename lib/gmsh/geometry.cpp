@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/error.hpp"
+#include "gmsh/plugin.hpp"
 #include "gmsh/session.hpp"
 
 namespace quadapt {
@@ -157,7 +158,7 @@ std::vector<Vec2> GmshGeometry::points(int k, const std::vector<double>& t) cons
 
 }  // namespace
 
-std::unique_ptr<BoundaryGeometry> open_geometry(const std::string& path) {
+std::unique_ptr<BoundaryGeometry> gmsh_plugin::sdk_open_geometry(const std::string& path) {
   return std::make_unique<GmshGeometry>(path);
 }
 

@@ -8,12 +8,14 @@
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "gmsh/plugin.hpp"
 #include "gmsh/session.hpp"
 
 namespace quadapt {
 
-GmshRecombined gmsh_recombine(const Mesh& tri, const std::vector<std::vector<int>>& loops,
-                              const std::vector<char>& on_boundary, const GmshRecombineOptions& opt) {
+GmshRecombined gmsh_plugin::sdk_gmsh_recombine(const Mesh& tri, const std::vector<std::vector<int>>& loops,
+                                              const std::vector<char>& on_boundary,
+                                              const GmshRecombineOptions& opt) {
   std::vector<std::size_t> node_tags;
   std::vector<double> coords, param;
   std::vector<int> etypes;
