@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# CLI test: the L_p-CVT chain does not depend on the coordinate axes. A 10:1 frame at 30 degrees
+# on the unit square, and the same problem rotated by 90 degrees about the square's centre (the
+# frame at 120 degrees) and mirrored in x = 1/2 (the frame at 150 degrees). The lattice start
+# grows from the finest background cell (ties: the first in the file), so one cell's metric is
+# made finer by 1e-6 and that cell is mapped with the problem; then lpcvt's points and
+# triangles and recombine's quads must be the mapped ones (to 1e-9), and quadsmooth's mesh must
+# have the same cells, the same irregular vertices and the same metric figures (quadsmooth's
+# sweeps follow the node numbering: to 0.01 degrees). With the seed cell not mapped (cell 1 in
+# all three) the outputs differ: on this frame the lattice's phase against the walls decides
+# where rows end (docs/quad-quality.md, "The lattice's phase").
+set -euo pipefail
+SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+BIN=${QUADAPT_BIN_DIR:-}
+[ -n "$BIN" ] && PATH="$BIN:$PATH"
+for t in lpcvt recombine quadsmooth meshquality; do
+  command -v $t >/dev/null || { echo "FAIL: $t not built (tools must be on PATH)" >&2; exit 1; }
+done
+PY=/usr/bin/python3; [ -x $PY ] || PY=python3
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+export OMP_NUM_THREADS=1
+N=16
+H1=0.05   # half-axes 0.05 x 0.005: the frame asks about 1000 final cells (issue #14)
+H2=0.005
+
+# frame ANGLE_DEG SEED_TAG NAME: the frame, with the metric of background cell SEED_TAG finer by 1e-6
+frame() {
+  $PY "$SRC/tests/cli/lpcvt_frame.py" "$T/$3-raw.msh" --n $N --h1 $H1 --h2 $H2 \
+    --theta "$($PY -c "import math; print(math.radians($1))")"
+  $PY - "$T/$3-raw.msh" "$2" "$T/$3.msh" <<'PY'
+import sys
+src, tag, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+L = open(src).read().split("\n")
+k = L.index('"Vinv"') + 1
+k += 1 + int(L[k])          # real tags
+nint = int(L[k]); n = int(L[k + 3]); k += 1 + nint
+for i in range(k, k + n):
+    f = L[i].split()
+    if int(f[0]) == tag:
+        L[i] = " ".join([f[0]] + [repr(float(v) * (1 + 1e-6)) for v in f[1:]])
+        break
+else:
+    sys.exit("frame: no cell %d" % tag)
+open(out, "w").write("\n".join(L))
+PY
+}
+chain() {  # chain NAME
+  lpcvt -q "$T/$1.msh" -o "$T/$1-tri.msh" --seed 3
+  recombine -q "$T/$1-tri.msh" -o "$T/$1-quad.msh"
+  quadsmooth -q "$T/$1-quad.msh" --frame "$T/$1.msh" -o "$T/$1-mesh.msh"
+  meshquality "$T/$1-mesh.msh" --frame "$T/$1.msh" > "$T/$1.mq.json"
+}
+# cell 1 is the bottom-left one; rotating by +90 degrees ((x, y) -> (1 - y, x)) and mirroring
+# ((x, y) -> (1 - x, y)) both take it to the bottom-right one, cell N
+frame 30 1 base; frame 120 $N rot; frame 150 $N mir
+chain base; chain rot; chain mir
+
+$PY - "$T" <<'PY'
+import json, sys
+import numpy as np
+T = sys.argv[1]
+def fail(msg):
+    print("FAIL: " + msg, file=sys.stderr); sys.exit(1)
+def read(path):
+    """nodes (n x 2) and the elements by type {type: list of node-index tuples} of an MSH 4.1 ASCII file"""
+    L = open(path).read().split("\n")
+    i = L.index("$Nodes"); nb = int(L[i + 1].split()[0]); k = i + 2; tags, xy = [], []
+    for _ in range(nb):
+        n = int(L[k].split()[3]); k += 1
+        tags += [int(t) for t in L[k:k + n]]; k += n
+        xy += [tuple(map(float, l.split()[:2])) for l in L[k:k + n]]; k += n
+    index = {t: j for j, t in enumerate(tags)}
+    i = L.index("$Elements"); nb = int(L[i + 1].split()[0]); k = i + 2; el = {}
+    for _ in range(nb):
+        f = L[k].split(); et, n = int(f[2]), int(f[3]); k += 1
+        el.setdefault(et, []).extend(tuple(index[int(t)] for t in l.split()[1:]) for l in L[k:k + n]); k += n
+    return np.array(xy), el
+maps = {"rot": lambda p: np.stack([p[:, 1], 1 - p[:, 0]], axis=1),   # back: (x, y) -> (y, 1 - x)
+        "mir": lambda p: np.stack([1 - p[:, 0], p[:, 1]], axis=1)}
+for name, back in maps.items():
+    for stage, tol in (("tri", 1e-9), ("quad", 1e-9)):
+        a, ea = read(f"{T}/base-{stage}.msh")
+        b, eb = read(f"{T}/{name}-{stage}.msh")
+        b = back(b)
+        if len(a) != len(b): fail(f"{name} {stage}: {len(b)} nodes, the original {len(a)}")
+        d = np.sqrt(((a[:, None, :] - b[None, :, :]) ** 2).sum(-1))
+        match = d.argmin(axis=1)
+        if d.min(axis=1).max() > tol or len(set(match.tolist())) != len(a):
+            fail(f"{name} {stage}: the nodes are not the mapped ones (largest distance {d.min(axis=1).max():.3e})")
+        for et in set(ea) | set(eb):
+            ca = sorted(tuple(sorted(c)) for c in ea.get(et, []))
+            cb = sorted(tuple(sorted(match.tolist().index(v) for v in c)) for c in eb.get(et, []))
+            if ca != cb: fail(f"{name} {stage}: the elements of type {et} are not the mapped ones")
+    qa = json.load(open(f"{T}/base.mq.json")); qb = json.load(open(f"{T}/{name}.mq.json"))
+    if qa["cells"] != qb["cells"] or qa["irregular_interior_share"] != qb["irregular_interior_share"]:
+        fail(f"{name} mesh: {qb['cells']} cells, irregular {qb['irregular_interior_share']}; "
+             f"the original {qa['cells']}, {qa['irregular_interior_share']}")
+    for key, tol in (("quad_angle_deviation_mean_deg", 0.01), ("scaled_jacobian_min", 1e-3)):
+        if abs(qa["metric"][key] - qb["metric"][key]) > tol:
+            fail(f"{name} mesh: metric {key} {qb['metric'][key]} against {qa['metric'][key]}")
+    print(f"ok {name}: the same points, triangles and quads; mesh {qb['cells']} cells, "
+          f"irregular {100 * qb['irregular_interior_share']:.2f} %, metric angle deviation "
+          f"{qb['metric']['quad_angle_deviation_mean_deg']:.3f} (original {qa['metric']['quad_angle_deviation_mean_deg']:.3f})")
+PY
+echo "PASS: lpcvt_equivariance"
