@@ -88,7 +88,6 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
   smo.q = opt.p;
   MinimizeResult last;
   bool outer_converged = false, changed = false, count_stop = false;
-  long nchanged = 0;  // points the last split/merge and the count fix changed (the polish rule)
   int cycle = 0;  // global cycle counter (history)
   auto on_iter = [&](const IterationRecord& it) {
     if (it.iteration > 0 && it.iteration % 25 == 0)
@@ -202,8 +201,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
       c.tolerance = tol;
       r.cycles.push_back(c);
       ++lrec->cycles;
-      nchanged = c.split.splits + c.split.merges + c.split.removed_outside;
-      changed = nchanged > 0;
+      changed = c.split.splits + c.split.merges + c.split.removed_outside > 0;
       say((nlevels ? "level " + std::to_string(level) + " " : std::string()) + "cycle " + std::to_string(cycle) +
           ": " + std::to_string(c.iterations) + " iterations (" + std::to_string(c.evaluations) +
           " evaluations, " + c.stop + "), E = " + fmt("%.6e", c.energy) + ", |grad E| = " + fmt("%.3e", c.grad_norm) +
@@ -244,14 +242,9 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
             std::to_string(d) + ")");
         sort_free();
         changed = true;
-        nchanged += std::abs(d);
       }
     }
-    if (level == 0 && changed && opt.polish && nchanged <= opt.polish_min_share * static_cast<double>(sites.size())) {
-      r.polish_skipped = static_cast<int>(nchanged);
-      say("final minimisation skipped: " + std::to_string(nchanged) + " of " + std::to_string(sites.size()) +
-          " points changed (at most " + fmt("%g", opt.polish_min_share) + " of them)");
-    } else if (level == 0 && changed && opt.polish) {
+    if (level == 0 && changed && opt.polish) {
       ++cycle;
       CycleRecord c = minimise(cycle, true);
       r.cycles.push_back(c);
@@ -339,7 +332,6 @@ nlohmann::json to_json(const LpcvtResult& r) {
   j["grad_norm"] = r.grad_norm;
   j["converged"] = r.converged;
   j["stop"] = r.stop;
-  j["polish_skipped"] = r.polish_skipped >= 0 ? nlohmann::json(r.polish_skipped) : nlohmann::json(nullptr);
   json cyc = json::array();
   for (const CycleRecord& c : r.cycles) {
     cyc.push_back({{"cycle", c.cycle}, {"polish", c.polish}, {"iterations", c.iterations},

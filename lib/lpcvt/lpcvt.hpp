@@ -52,12 +52,6 @@ struct LpcvtOptions {
   /// Whether q is a valid boundary_norm: 0 (the exponent p) or a norm's exponent in [1, 64].
   static bool valid_boundary_norm(double q) { return q == 0 || (q >= 1 && q <= 64); }
   bool polish = true;           ///< minimise once more after the last split/merge if it changed points
-  /// The polish is skipped when the last split/merge and the count fix changed at most this share
-  /// of the points (splits + merges + removed + |count change| <= share x points): only those few
-  /// neighbourhoods are off the minimum, and the polish costs at least one stop window (`past`
-  /// iterations) of full evaluations (1.1e6 points: one merge and one insertion, 10 iterations,
-  /// ~9 s). 0: always polish. At 1e-4 a run of fewer than 10,000 points always polishes.
-  double polish_min_share = 1e-4;
   bool multilevel = false;      ///< multilevel start (above); the coarsest level uses seed_mode
   int coarse_points = 250;      ///< multilevel: interior points of the coarsest level, at least
   double lattice_delta = 0.75;   ///< SeedMode::Lattice: rejection distance (metric units)
@@ -124,7 +118,6 @@ struct LpcvtResult {
   double energy = 0, grad_norm = 0;
   bool converged = false;          ///< outer loop converged and the last minimisation converged
   std::string stop;                ///< why it stopped, in words
-  int polish_skipped = -1;         ///< points changed when the polish was skipped (polish_min_share); -1: not skipped
   double requested_points = 0, metric_area = 0, boundary_metric_length = 0;
   double boundary_norm = 2;     ///< the q of the boundary's metric length actually used
   Mesh mesh;                       ///< the final triangulation

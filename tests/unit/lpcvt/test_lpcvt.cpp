@@ -5,7 +5,6 @@
 #include <omp.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <string>
 
 #include "helpers.hpp"
@@ -13,8 +12,6 @@
 #include "lpcvt/lpcvt.hpp"
 #include "lpcvt/optimize.hpp"
 #include "lpcvt/point_quality.hpp"
-#include "lpcvt/run.hpp"
-#include "frame/frame.hpp"
 #include "lpcvt/triangulate.hpp"
 
 using namespace lpcvt_test;
@@ -367,41 +364,4 @@ TEST_CASE("points settled: the stop comes at the first window whose RMS metric m
   };
   CHECK(rms(x, y1) == doctest::Approx(r.window_move).epsilon(1e-9));
   CHECK(rms(y1, y2) > sc.o.move_tol);  // the previous window did not stop it
-}
-
-TEST_CASE("the polish after the last split/merge is skipped only when few points changed") {
-  // PHiLiP's bl15_fb_p3 step-3 frame with the tool's defaults: the count fix adds one point after
-  // the last cycle, and the polish takes a stop window (10 iterations)
-  const quadapt::Frame fr = quadapt::read_frame(std::string(QUADAPT_FIXTURES_DIR) + "/input_bl15_fb_p3_3.msh",
-                                                quadapt::SizeConvention::Philip);
-  LpcvtJob job = LpcvtJob::for_frame();
-  nlohmann::json rep;
-  const Background bg = frame_background(fr, job, rep);
-  job.lpcvt.polish_min_share = 0;  // always polish
-  const LpcvtResult a = mesh_background(bg, job, rep);
-  REQUIRE(a.cycles.size() >= 2);
-  REQUIRE(a.cycles.back().polish);  // the set-up has a polish to skip
-  CHECK(a.polish_skipped == -1);
-  const int n = static_cast<int>(a.sites.size());
-  // the points the last split/merge and the count fix changed: the report's count change
-  const CycleRecord& last_split = a.cycles[a.cycles.size() - 2];
-  const int split_changes = last_split.split.splits + last_split.split.merges + last_split.split.removed_outside;
-  const int changes = split_changes + std::abs(n - last_split.points);
-  REQUIRE(changes > 0);
-  // a share just below the changes': still polished, the same points
-  job.lpcvt.polish_min_share = 0.99 * changes / n;
-  const LpcvtResult b = mesh_background(bg, job, rep);
-  CHECK(b.cycles.back().polish);
-  CHECK(b.sites == a.sites);
-  // at the changes' share: skipped, one stop window fewer, a valid triangulation of as many points
-  job.lpcvt.polish_min_share = 1.01 * changes / n;
-  const LpcvtResult c = mesh_background(bg, job, rep);
-  CHECK_FALSE(c.cycles.back().polish);
-  CHECK(c.polish_skipped == changes);
-  CHECK(c.cycles.size() + 1 == a.cycles.size());
-  CHECK(c.evaluations + a.cycles.back().evaluations == a.evaluations);
-  CHECK(c.sites.size() == a.sites.size());
-  CHECK(c.sites != a.sites);
-  CHECK(check_triangulation(c.mesh).ok());
-  CHECK(rep["polish_skipped"] == changes);
 }
