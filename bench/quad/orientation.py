@@ -14,6 +14,13 @@ edges (in the metric) from every corner of the square (computed here from the me
 constant frame).
 
   orientation.py BIN OUT [--angles 0 15 ...] [--stretches 1 5 ...] [--bamg] [--jobs 2]
+  orientation.py BIN OUT --seed-cells 1 16 40 ... [--angles ...] [--stretches ...]
+
+--seed-cells: the L_p-CVT chain once per listed background cell, that cell's metric made finer by
+1e-6 so that lpcvt's lattice start grows from it (lpcvt_frame.py --finer-cell): the spread over
+the lattice's phase against the walls, which the default (cell 1) samples once. Prints per angle
+and stretch the range and median of the figures and how many phases meet issue #14's item 1
+(docs/quad-quality.md, "The lattice's phase").
 """
 import argparse, json, math, os, subprocess, sys
 from concurrent.futures import ThreadPoolExecutor
@@ -61,15 +68,16 @@ def run(cmd):
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
 
 
-def one(binp, out, a_deg, s, bamg):
+def one(binp, out, a_deg, s, bamg, seed_cell=0):
     h = math.sqrt(0.05 * 0.005)
     h1, h2 = h * math.sqrt(s), h / math.sqrt(s)
     a = math.radians(a_deg)
-    tag = f"a{a_deg:g}-s{s:g}"
+    tag = f"a{a_deg:g}-s{s:g}" + (f"-c{seed_cell}" if seed_cell else "")
     f = os.path.join(out, f"frame-{tag}.msh")
-    run(["/usr/bin/python3", FRAME_PY, f, "--n", "16", "--h1", repr(h1), "--h2", repr(h2), "--theta", repr(a)])
+    run(["/usr/bin/python3", FRAME_PY, f, "--n", "16", "--h1", repr(h1), "--h2", repr(h2), "--theta", repr(a)]
+        + (["--finer-cell", str(seed_cell)] if seed_cell else []))
     rows = []
-    paths = ["lpcvt"] + (["bamgquad"] if bamg else [])
+    paths = ["lpcvt"] + (["bamgquad"] if bamg and not seed_cell else [])
     for path in paths:
         m = os.path.join(out, f"{path}-{tag}.msh")
         if path == "lpcvt":
@@ -101,8 +109,11 @@ def main():
     ap.add_argument("--stretches", type=float, nargs="+", default=[1, 5, 10, 20])
     ap.add_argument("--bamg", action="store_true")
     ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--seed-cells", type=int, nargs="+", default=[])
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
+    if a.seed_cells:
+        return phases(a)
     jobs = [(ang, s) for s in a.stretches for ang in a.angles]
     with ThreadPoolExecutor(a.jobs) as ex:
         res = list(ex.map(lambda j: one(a.bin, a.out, j[0], j[1], a.bamg), jobs))
@@ -113,6 +124,27 @@ def main():
     for r in rows:
         print(f"| {r['angle']} | {r['stretch']:g} | {r['path']} | {r['dev']:.1f} | {r['min_sj']:.2f} | {r['bound']:.2f} | {r['min_sj_beyond'][2]:.3f} / {r['min_sj_beyond'][4]:.3f} | "
               f"{100 * r['in_band']:.1f} % | {100 * r['irregular']:.1f} % | {r['cells']} / {r['target']:.0f} ({100 * (r['cells'] / r['target'] - 1):+.1f} %) |")
+
+
+def phases(a):
+    jobs = [(ang, s, c) for s in a.stretches for ang in a.angles for c in a.seed_cells]
+    with ThreadPoolExecutor(a.jobs) as ex:
+        res = list(ex.map(lambda j: one(a.bin, a.out, j[0], j[1], False, j[2])[0] | {"cell": j[2]}, jobs))
+    json.dump(res, open(os.path.join(a.out, "phases.json"), "w"), indent=1)
+    k = len(a.seed_cells)
+    print(f"Over {k} lattice phases (seed cells {' '.join(map(str, a.seed_cells))}): range (median); "
+          "'met' = phases meeting issue #14 item 1's target")
+    print("| angle | stretch | mean metric angle dev. | ≤ 8° met | irregular | ≤ 3 % met | edges in band (min) | ≥ 95 % met | cells / target |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    med = lambda v: sorted(v)[len(v) // 2]
+    for s in a.stretches:
+        for ang in a.angles:
+            rr = [r for r in res if r["angle"] == f"{ang:g}" and r["stretch"] == s]
+            dev = [r["dev"] for r in rr]; irr = [100 * r["irregular"] for r in rr]
+            band = [100 * r["in_band"] for r in rr]; cells = [r["cells"] / r["target"] - 1 for r in rr]
+            print(f"| {ang:g} | {s:g} | {min(dev):.1f}–{max(dev):.1f}° ({med(dev):.1f}°) | {sum(d <= 8 for d in dev)} of {k} | "
+                  f"{min(irr):.1f}–{max(irr):.1f} % ({med(irr):.1f} %) | {sum(i <= 3 for i in irr)} of {k} | "
+                  f"{min(band):.1f} % | {sum(b >= 95 for b in band)} of {k} | {100 * min(cells):+.1f} to {100 * max(cells):+.1f} % |")
 
 
 if __name__ == "__main__":

@@ -26,24 +26,8 @@ H2=0.005
 
 # frame ANGLE_DEG SEED_TAG NAME: the frame, with the metric of background cell SEED_TAG finer by 1e-6
 frame() {
-  $PY "$SRC/tests/cli/lpcvt_frame.py" "$T/$3-raw.msh" --n $N --h1 $H1 --h2 $H2 \
+  $PY "$SRC/tests/cli/lpcvt_frame.py" "$T/$3.msh" --n $N --h1 $H1 --h2 $H2 --finer-cell "$2" \
     --theta "$($PY -c "import math; print(math.radians($1))")"
-  $PY - "$T/$3-raw.msh" "$2" "$T/$3.msh" <<'PY'
-import sys
-src, tag, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
-L = open(src).read().split("\n")
-k = L.index('"Vinv"') + 1
-k += 1 + int(L[k])          # real tags
-nint = int(L[k]); n = int(L[k + 3]); k += 1 + nint
-for i in range(k, k + n):
-    f = L[i].split()
-    if int(f[0]) == tag:
-        L[i] = " ".join([f[0]] + [repr(float(v) * (1 + 1e-6)) for v in f[1:]])
-        break
-else:
-    sys.exit("frame: no cell %d" % tag)
-open(out, "w").write("\n".join(L))
-PY
 }
 chain() {  # chain NAME
   lpcvt -q "$T/$1.msh" -o "$T/$1-tri.msh" --seed 3

@@ -11,6 +11,9 @@ L-shape) and per cell $ElementData "Vinv" = V^-1, V = R(theta) diag(h1, h2), 9 c
     across, s(d) = 1 + (--stretch - 1) exp(-(d / --band-width)^2), d = |x| - --band-radius
     (circles about the origin: on the unit square a quarter-circle band meeting two walls at right
     angles; isotropic h1 far from it).
+  --finer-cell K: the metric of the cell with element tag K finer by 1e-6 (relative), so that
+  lpcvt's lattice start grows from that cell (the finest first; ties: the first in the file) —
+  the lattice's phase against the walls (docs/quad-quality.md, "The lattice's phase").
   --corrupt nan|singular|none: damage one cell's frame (bad-input tests): the cell with element
   tag --corrupt-cell K (default 1; tags are 1..cells in file order, rows from the bottom).
 """
@@ -35,6 +38,7 @@ def main():
     ap.add_argument("--philip", action="store_true", help="no $FrameConvention section (read as PHiLiP's sizes)")
     ap.add_argument("--corrupt", choices=["none", "nan", "singular", "nofield"], default="none")
     ap.add_argument("--corrupt-cell", type=int, default=1)
+    ap.add_argument("--finer-cell", type=int, default=0, help="make this cell's metric finer by 1e-6 (the lattice seed)")
     a = ap.parse_args()
     n = a.n
     x0, x1, y0, y1 = a.box
@@ -70,6 +74,10 @@ def main():
             m = [1 + 4 * x * x, -4 * x * y, -4 * x * y, 1 + 4 * y * y]
             m = [a.factor * t for t in m]
         frames.append(m)
+    if a.finer_cell:
+        if not 1 <= a.finer_cell <= len(frames):
+            raise SystemExit(f"lpcvt_frame.py: --finer-cell {a.finer_cell}: the frame has cells 1..{len(frames)}")
+        frames[a.finer_cell - 1] = [t * (1 + 1e-6) for t in frames[a.finer_cell - 1]]
     if a.corrupt == "nan":
         frames[a.corrupt_cell - 1] = [float("nan")] * 4
     elif a.corrupt == "singular":
