@@ -15,6 +15,7 @@ constant frame).
 
   orientation.py BIN OUT [--angles 0 15 ...] [--stretches 1 5 ...] [--bamg] [--jobs 2]
   orientation.py BIN OUT --seed-cells 1 16 40 ... [--angles ...] [--stretches ...]
+  [--lpcvt-args '...'] [--recombine-args '...'] [--quadsmooth-args '...']: options to try
 
 --seed-cells: the L_p-CVT chain once per listed background cell, that cell's metric made finer by
 1e-6 so that lpcvt's lattice start grows from it (lpcvt_frame.py --finer-cell): the spread over
@@ -64,6 +65,9 @@ def corner_bound(h1, h2, a):
     return math.sin(min(ang, math.pi - ang))
 
 
+EXTRA = {"lpcvt": [], "recombine": [], "quadsmooth": []}  # --lpcvt-args etc.: options to try
+
+
 def run(cmd):
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
 
@@ -82,9 +86,9 @@ def one(binp, out, a_deg, s, bamg, seed_cell=0):
         m = os.path.join(out, f"{path}-{tag}.msh")
         if path == "lpcvt":
             t, q = os.path.join(out, f"tri-{tag}.msh"), os.path.join(out, f"quad-{tag}.msh")
-            run([f"{binp}/lpcvt", f, "-o", t, "--seed", "3", "-q", "--threads", "1"])
-            run([f"{binp}/recombine", t, "-o", q, "-q", "--threads", "1"])
-            run([f"{binp}/quadsmooth", q, "--frame", f, "-o", m, "-q", "--threads", "1"])
+            run([f"{binp}/lpcvt", f, "-o", t, "--seed", "3", "-q", "--threads", "1"] + EXTRA["lpcvt"])
+            run([f"{binp}/recombine", t, "-o", q, "-q", "--threads", "1"] + EXTRA["recombine"])
+            run([f"{binp}/quadsmooth", q, "--frame", f, "-o", m, "-q", "--threads", "1"] + EXTRA["quadsmooth"])
         else:
             run([f"{binp}/bamgquad", f, "-o", m, "-q", "--threads", "1"])
         d = json.loads(subprocess.run([f"{binp}/meshquality", m, "--frame", f], check=True,
@@ -110,7 +114,11 @@ def main():
     ap.add_argument("--bamg", action="store_true")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--seed-cells", type=int, nargs="+", default=[])
+    for tool in EXTRA:
+        ap.add_argument(f"--{tool}-args", default="", help=f"extra {tool} options (one string, split at spaces)")
     a = ap.parse_args()
+    for tool in EXTRA:
+        EXTRA[tool] = getattr(a, f"{tool}_args").split()
     os.makedirs(a.out, exist_ok=True)
     if a.seed_cells:
         return phases(a)
