@@ -30,7 +30,7 @@ const Table* load() {
     std::string why = error ? error : "unknown error";
     if (why.rfind(path + ": ", 0) == 0) why.erase(0, path.size() + 2);  // glibc starts with the path
     throw ExternalError("Gmsh support: cannot load " + path + ": " + why +
-                        " (libquadapt-gmsh.so must sit beside libquadapt.so, and libgmsh be installed)");
+                        " (" + kFileName + " must sit beside libquadapt.so, and libgmsh be installed)");
   }
   using Entry = const Table* (*)();
   auto entry = reinterpret_cast<Entry>(dlsym(handle, kEntry));

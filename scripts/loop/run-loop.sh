@@ -184,9 +184,7 @@ record_warnings() {  # record_warnings STEPDIR TOOL RC
   # (each fork costs ~1-2 ms; a loop runs ~40 tools)
   if [ "$rc" -eq 0 ] && [ ! -e "$dir/warnings.txt" ]; then
     IFS= read -r -d '' content < "$log" || true
-    shopt -s nocasematch
-    if [[ $content != *warning:* ]]; then shopt -u nocasematch; return 0; fi
-    shopt -u nocasematch
+    [[ ${content,,} != *warning:* ]] && return 0
   fi
   while IFS= read -r line; do w+=("$line"); done < <(
     { grep -i -E '(^|: )warning:' "$log" | sed -E 's/^([^ :]+: )?warning: //I'

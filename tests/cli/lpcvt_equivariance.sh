@@ -40,26 +40,18 @@ chain() {  # chain NAME
 frame 30 1 base; frame 120 $N rot; frame 150 $N mir
 chain base; chain rot; chain mir
 
-$PY - "$T" <<'PY'
-import json, sys
+$PY - "$T" "$SRC" <<'PY'
+import json, os, sys
 import numpy as np
-T = sys.argv[1]
+T, SRC = sys.argv[1], sys.argv[2]
 def fail(msg):
     print("FAIL: " + msg, file=sys.stderr); sys.exit(1)
+sys.path.insert(0, os.path.join(SRC, "tests", "cli"))
+from golden_compare import read_msh  # noqa: E402
 def read(path):
-    """nodes (n x 2) and the elements by type {type: list of node-index tuples} of an MSH 4.1 ASCII file"""
-    L = open(path).read().split("\n")
-    i = L.index("$Nodes"); nb = int(L[i + 1].split()[0]); k = i + 2; tags, xy = [], []
-    for _ in range(nb):
-        n = int(L[k].split()[3]); k += 1
-        tags += [int(t) for t in L[k:k + n]]; k += n
-        xy += [tuple(map(float, l.split()[:2])) for l in L[k:k + n]]; k += n
-    index = {t: j for j, t in enumerate(tags)}
-    i = L.index("$Elements"); nb = int(L[i + 1].split()[0]); k = i + 2; el = {}
-    for _ in range(nb):
-        f = L[k].split(); et, n = int(f[2]), int(f[3]); k += 1
-        el.setdefault(et, []).extend(tuple(index[int(t)] for t in l.split()[1:]) for l in L[k:k + n]); k += n
-    return np.array(xy), el
+    """nodes (n x 2) and the elements by type {type: lists of node indices}"""
+    m = read_msh(path)
+    return np.array(m["nodes"])[:, :2], m["elements"]
 maps = {"rot": lambda p: np.stack([p[:, 1], 1 - p[:, 0]], axis=1),   # back: (x, y) -> (y, 1 - x)
         "mir": lambda p: np.stack([1 - p[:, 0], p[:, 1]], axis=1)}
 for name, back in maps.items():
@@ -72,9 +64,11 @@ for name, back in maps.items():
         match = d.argmin(axis=1)
         if d.min(axis=1).max() > tol or len(set(match.tolist())) != len(a):
             fail(f"{name} {stage}: the nodes are not the mapped ones (largest distance {d.min(axis=1).max():.3e})")
+        to_a = np.empty(len(a), dtype=int)  # node of b -> its node in a
+        to_a[match] = np.arange(len(a))
         for et in set(ea) | set(eb):
             ca = sorted(tuple(sorted(c)) for c in ea.get(et, []))
-            cb = sorted(tuple(sorted(match.tolist().index(v) for v in c)) for c in eb.get(et, []))
+            cb = sorted(tuple(sorted(int(to_a[v]) for v in c)) for c in eb.get(et, []))
             if ca != cb: fail(f"{name} {stage}: the elements of type {et} are not the mapped ones")
     qa = json.load(open(f"{T}/base.mq.json")); qb = json.load(open(f"{T}/{name}.mq.json"))
     if qa["cells"] != qb["cells"] or qa["irregular_interior_share"] != qb["irregular_interior_share"]:
