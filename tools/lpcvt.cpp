@@ -40,6 +40,16 @@ int main(int argc, char** argv) {
   app.add_option("--jitter", opt.start_jitter, "Lattice start: move each interior point by up to this many target "
                  "edges (in the metric) at random (--seed); 0 = the lattice as built")
       ->capture_default_str()->check(CLI::Range(0.0, 10.0));
+  app.add_option("--phases", job.phases, "Lattice start: run from this many lattice phases (translations of the "
+                 "lattice against walls oblique to the frame) and keep the one whose recombined mesh has the fewest "
+                 "irregular interior vertices (docs/lpcvt.md, Phases); 1 = one run; 0 = auto: 4 when the frame asks for "
+                 "at most 4000 points, else 1")
+      ->capture_default_str()->check(CLI::Range(0, 16));
+  std::vector<double> lattice_phase;
+  app.add_option("--lattice-phase", lattice_phase, "Lattice start: move the lattice by these fractions of a lattice cell "
+                 "(two numbers in [0, 1)) along the axes the walls do not register — a single phase, e.g. the one a "
+                 "--phases run reports as kept")
+      ->expected(2)->check(CLI::Range(0.0, 1.0));
   app.add_option("--lp-exponent", opt.p, "L_p exponent p of the energy (eq. 4.1) and of eq. 4.12")
       ->capture_default_str()->check(CLI::Range(2.0, 32.0));
   app.add_option("--boundary-norm", opt.boundary_norm, "q of the wall points' metric length |M tau|_q: 2 = the thesis's "
@@ -128,6 +138,11 @@ int main(int argc, char** argv) {
     if (!voronoi_out.empty()) tool.output(voronoi_out);
     if (!frame_out.empty()) tool.output(frame_out);
     opt.exact_count = !no_exact;
+    if (!lattice_phase.empty()) {
+      if (app.count("--phases") && job.phases > 1) throw InputError("", "--lattice-phase gives one phase: it does not go with --phases > 1");
+      opt.lattice_phase = Vec2(lattice_phase[0], lattice_phase[1]);
+      job.phases = 1;
+    }
     if (analytic_mode && app.count("--orientation") && orientation == "boundary")
       throw InputError("", "--orientation boundary needs a frame: the --analytic metric states its own orientation");
     job.free_orientation = orientation == "boundary";

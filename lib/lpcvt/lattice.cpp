@@ -16,7 +16,8 @@ using Point = K::Point_2;
 using VH = DT::Vertex_handle;
 }  // namespace
 
-Vec2 register_seed(const Vec2& y, const Mat2& M, const std::vector<Vec2>& fixed, double radius) {
+Vec2 register_seed(const Vec2& y, const Mat2& M, const std::vector<Vec2>& fixed, double radius,
+                   const Vec2& phase, bool* registered) {
   // phases phi = frac(M (b - y)) of the fixed points b within metric distance `radius`; their
   // circular mean per axis, weighted by the resultant length (a boundary that is not aligned
   // with the lattice gives uniformly spread phases and no shift)
@@ -32,17 +33,19 @@ Vec2 register_seed(const Vec2& y, const Mat2& M, const std::vector<Vec2>& fixed,
     }
     ++n;
   }
-  if (n == 0) return y;
   Vec2 shift;
   for (int a = 0; a < 2; ++a) {
-    const double r = std::hypot(c[a], s[a]) / n;  // 1: all in phase, ~0: no preferred phase
-    shift[a] = r > 0.5 ? std::atan2(s[a], c[a]) / two_pi : 0.0;
+    const double r = n ? std::hypot(c[a], s[a]) / n : 0.0;  // 1: all in phase, ~0: no preferred phase
+    const bool reg = r > 0.5;
+    shift[a] = reg ? std::atan2(s[a], c[a]) / two_pi : phase[a];
+    if (registered) registered[a] = reg;
   }
+  if (shift == Vec2::Zero()) return y;
   return y + M.inverse() * shift;
 }
 
 std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& fixed, double delta,
-                                 int max_points) {
+                                 int max_points, const Vec2& phase) {
   std::vector<Vec2> out;
   DT dt;
   VH hint;
@@ -103,7 +106,7 @@ std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& 
         // in phase with the boundary points where they lie on the lattice (e.g. a wall along
         // the frame): otherwise rows start half a spacing off the boundary's and the
         // minimisation leaves a dislocation where they meet
-        const Vec2 yr = register_seed(y, M, fixed, 12.0);
+        const Vec2 yr = register_seed(y, M, fixed, 12.0, phase);
         if (bg.locate(yr, q) >= 0) {
           y = yr;
           M = bg.metric(bg.locate(y, q), y);

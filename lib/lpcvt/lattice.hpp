@@ -31,11 +31,18 @@ namespace quadapt::lpcvt {
 /// The seed y moved by less than one lattice cell so that the lattice y + M^-1 Z^2 is in phase
 /// with the fixed points within metric distance `radius` of y, per lattice axis, where those are
 /// in phase with each other (circular mean of frac(M (b - y)) with resultant length > 0.5);
-/// unchanged where they are not (a boundary oblique to the frame).
-Vec2 register_seed(const Vec2& y, const Mat2& M, const std::vector<Vec2>& fixed, double radius);
+/// along an axis where they are not (a boundary oblique to the frame) moved by phase[axis]
+/// lattice units instead (0: unchanged). `registered` (optional, 2 entries) says which axes the
+/// fixed points set.
+Vec2 register_seed(const Vec2& y, const Mat2& M, const std::vector<Vec2>& fixed, double radius,
+                   const Vec2& phase = Vec2::Zero(), bool* registered = nullptr);
 
 /// The interior points grown (above) given the fixed points `fixed`; at most `max_points`.
+/// `phase` (lattice units, each in [0, 1)): every seed moved by M^-1 phase along the axes that the
+/// wall does not register (register_seed) — the lattice's translation against oblique walls,
+/// which the minimisation keeps and which decides where rows end on the walls (lpcvt/phases.hpp).
 std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& fixed,
-                                 double delta = 0.75, int max_points = 10000000);
+                                 double delta = 0.75, int max_points = 10000000,
+                                 const Vec2& phase = Vec2::Zero());
 
 }  // namespace quadapt::lpcvt

@@ -154,7 +154,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
       if (n0 < 0 || nlevels > 0) n0 = std::max(1, target_interior);
       std::vector<Vec2> seeds;
       if (opt.seed_mode == SeedMode::Lattice) {
-        seeds = lattice_points(*lbg, sites, opt.lattice_delta, 4 * n0 + 100);
+        seeds = lattice_points(*lbg, sites, opt.lattice_delta, 4 * n0 + 100, opt.lattice_phase);
         lrec->start_points = static_cast<int>(seeds.size()) + nfixed;
         if (opt.start_jitter > 0) jitter_start(*lbg, seeds, opt.start_jitter, opt.seed);
         sites.insert(sites.end(), seeds.begin(), seeds.end());
@@ -167,6 +167,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
         lrec->start_points = static_cast<int>(sites.size());
       }
       r.initial_sites = sites;
+      if (opt.start_only) return r;
       say(std::to_string(r.boundary.curve_length.size()) + " boundary curves, " + std::to_string(r.nfixed) +
           " boundary points; requested points " + fmt("%.1f", r.requested_points) + " (metric area " +
           fmt("%.1f", r.metric_area) + ")" +

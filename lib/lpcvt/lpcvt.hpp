@@ -55,6 +55,12 @@ struct LpcvtOptions {
   bool multilevel = false;      ///< multilevel start (above); the coarsest level uses seed_mode
   int coarse_points = 250;      ///< multilevel: interior points of the coarsest level, at least
   double lattice_delta = 0.75;   ///< SeedMode::Lattice: rejection distance (metric units)
+  /// SeedMode::Lattice: the lattice's translation (lattice units, each in [0, 1)) along the axes
+  /// the walls do not register (lattice.hpp, lattice_points); lpcvt/phases.hpp tries several.
+  Vec2 lattice_phase = Vec2::Zero();
+  /// Return once the start (boundary points and seeds: LpcvtResult::initial_sites) is built, with
+  /// no minimisation and no mesh (lpcvt/phases.hpp compares the phases' starts with it).
+  bool start_only = false;
   /// SeedMode::Lattice: each interior start point moved by M_eff^-1 u, u uniform in the disk of
   /// this radius (metric units: target edges), drawn from `seed` in point order; a move that leaves
   /// the domain is not made. 0: the lattice as built (then `seed` changes nothing).

@@ -1,5 +1,6 @@
 #include "lpcvt/run.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <memory>
 
@@ -8,6 +9,7 @@
 #include "lpcvt/cross_field.hpp"
 #include "lpcvt/energy.hpp"
 #include "lpcvt/metric_filter.hpp"
+#include "lpcvt/phases.hpp"
 #include "lpcvt/point_quality.hpp"
 #include "lpcvt/triangulate.hpp"
 
@@ -167,12 +169,67 @@ Background saddle_background(int grid, bool sampled, const LpcvtJob& job, nlohma
   return bg;
 }
 
+int auto_phases(const Background& bg) { return bg.metric_area() <= kAutoPhasePoints ? kAutoPhases : 1; }
+
 LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann::json& rep,
                             const std::function<void(const std::string&)>& log) {
   const LpcvtOptions& opt = job.lpcvt;
   if (!(opt.split.lmin >= 0 && opt.split.lmax > opt.split.lmin)) throw InputError("", "need 0 <= --lmin < --lmax");
   rep["options"]["weight"] = opt.lbfgs.gamma;
-  LpcvtResult r = run_lpcvt(bg, opt, log);
+  const bool lattice = opt.seed_mode == SeedMode::Lattice && !opt.multilevel && !bg.is_analytic();
+  const int phases = !lattice ? 1 : job.phases > 0 ? job.phases : auto_phases(bg);
+  rep["options"]["phases"] = phases;
+  LpcvtResult r;
+  if (phases == 1) {
+    r = run_lpcvt(bg, opt, log);
+  } else {
+    // best of `phases` lattice phases by the recombined mesh's irregular vertices (phases.hpp)
+    nlohmann::json runs = nlohmann::json::array();
+    std::vector<std::vector<Vec2>> starts;
+    PhaseScore best;
+    int kept = -1;
+    for (int k = 0; k < phases; ++k) {
+      LpcvtOptions o = opt;
+      o.lattice_phase = phase_offset(k, phases);
+      nlohmann::json e = {{"phase", {o.lattice_phase.x(), o.lattice_phase.y()}}};
+      // walls along the frame register both axes: the same start, the same run again
+      o.start_only = true;
+      const std::vector<Vec2> start = run_lpcvt(bg, o, {}).initial_sites;
+      bool repeat = false;
+      for (const auto& s0 : starts) repeat |= s0 == start;
+      if (repeat) {
+        e["same_start_as_earlier"] = true;
+        runs.push_back(e);
+        continue;
+      }
+      starts.push_back(start);
+      o.start_only = false;
+      const auto t0 = std::chrono::steady_clock::now();
+      LpcvtResult rk = run_lpcvt(bg, o, {});
+      const TriangulationCheck ck = check_triangulation(rk.mesh);
+      if (!ck.ok()) throw NumericalError("lpcvt: invalid output triangulation (phase " + std::to_string(k) + "): " + ck.summary());
+      const PhaseScore sc = recombine_score(rk.mesh);
+      e["irregular"] = sc.irregular;
+      e["interior"] = sc.interior;
+      e["unmatched_triangles"] = sc.unmatched;
+      e["pair_quality"] = sc.quality;
+      e["evaluations"] = rk.evaluations;
+      e["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      runs.push_back(e);
+      say(log, "phase " + std::to_string(k) + " (" + sci(o.lattice_phase.x()) + ", " + sci(o.lattice_phase.y()) +
+                   "): " + std::to_string(rk.evaluations) + " evaluations, " + std::to_string(sc.irregular) + " of " +
+                   std::to_string(sc.interior) + " interior vertices irregular after recombine, pair quality " +
+                   sci(sc.quality));
+      if (kept < 0 || sc.better_than(best)) {
+        best = sc;
+        kept = k;
+        r = std::move(rk);
+      }
+    }
+    rep["phases"] = runs;
+    rep["phase"] = kept;
+    say(log, "kept phase " + std::to_string(kept));
+  }
   const TriangulationCheck chk = check_triangulation(r.mesh);
   if (!chk.ok()) throw NumericalError("lpcvt: invalid output triangulation: " + chk.summary());
   const EnergyTimers& et = r.energy_timers;

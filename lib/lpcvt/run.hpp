@@ -29,6 +29,9 @@ struct LpcvtJob {
   double cells_per_triangle = 2;  ///< final cells per triangle recombine gives: the point count is sized by 2/R
   bool metric_cells = true;       ///< Voronoi cells in the metric (Background::set_metric_cells); false: the thesis's
   double cell_anisotropy = 0.9;   ///< with metric_cells: the cells' anisotropy is the metric's to this power (0..1)
+  /// Lattice start: run from this many lattice phases and keep the best recombined one
+  /// (lpcvt/phases.hpp); 1 = phase 0 only; 0 = auto_phases(). Ignored for the other starts.
+  int phases = 0;
 
   /// The lpcvt tool's defaults for a frame (docs/lpcvt.md): LpcvtOptions::for_frame(), metric
   /// cells, --smooth 4, --gradation 2, --orientation boundary.
@@ -50,8 +53,17 @@ Background frame_background(const Frame& f, const LpcvtJob& job, nlohmann::json&
 Background saddle_background(int grid, bool sampled, const LpcvtJob& job, nlohmann::json& report,
                              const std::function<void(const std::string&)>& log = {});
 
-/// run_lpcvt, the check of the output triangulation (NumericalError when invalid), and the
-/// report figures (to_json, areas, angles, Voronoi alignment, expected_cells).
+/// The default number of lattice phases: kAutoPhases where the background asks for at most
+/// kAutoPhasePoints points (metric area), 1 above: there the walls' rows are a small share of the
+/// points and the phase changes the irregular vertices by < 1 % (docs/lpcvt.md, Phases).
+constexpr int kAutoPhases = 4;
+constexpr double kAutoPhasePoints = 4000;
+int auto_phases(const Background& bg);
+
+/// run_lpcvt (from job.phases lattice phases, keeping the best: lpcvt/phases.hpp), the check of
+/// the output triangulation (NumericalError when invalid), and the report figures (to_json,
+/// areas, angles, Voronoi alignment, expected_cells; with phases > 1 "phases": one entry per
+/// phase run, and "phase": the index kept).
 LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann::json& report,
                             const std::function<void(const std::string&)>& log = {});
 
