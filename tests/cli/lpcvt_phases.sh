@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# CLI test: lpcvt --phases (lib/lpcvt/phases.hpp). On a 10:1 frame at 45 degrees (walls oblique
+# to the lattice) lpcvt --phases 4 runs four lattice phases and keeps the one whose recombined
+# mesh has the fewest irregular interior vertices (ties: the higher pair quality):
+#   - the report lists the four runs and the kept index is their best by that rule;
+#   - the output is byte-identical to a one-phase run at the kept phase (--lattice-phase), and
+#     recombine on it gives exactly the irregular count the report states;
+#   - the default (auto) on this small frame is 4 phases; --phases 1 is phase 0's run;
+#   - on a frame aligned with the walls every phase has the same start: one run, three skipped;
+#   - --lattice-phase with --phases > 1, or out of [0, 1), is refused with one line.
+set -euo pipefail
+SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
+BIN=${QUADAPT_BIN_DIR:-}
+[ -n "$BIN" ] && PATH="$BIN:$PATH"
+for t in lpcvt recombine meshquality; do
+  command -v $t >/dev/null || { echo "FAIL: $t not built (tools must be on PATH)" >&2; exit 1; }
+done
+PY=/usr/bin/python3; [ -x $PY ] || PY=python3
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+export OMP_NUM_THREADS=1
+frame() {  # frame NAME ANGLE_DEG: 0.05 x 0.005 half-axes on a 16 x 16 background (1000 final cells)
+  $PY "$SRC/tests/cli/lpcvt_frame.py" "$T/$1.msh" --n 16 --h1 0.05 --h2 0.005 \
+    --theta "$($PY -c "import math; print(math.radians($2))")"
+}
+frame f45 45
+frame f0 0
+
+lpcvt -q "$T/f45.msh" -o "$T/k4.msh" --phases 4
+lpcvt -q "$T/f45.msh" -o "$T/auto.msh"
+lpcvt -q "$T/f45.msh" -o "$T/one.msh" --phases 1
+lpcvt -q "$T/f45.msh" -o "$T/zero.msh" --lattice-phase 0 0
+KEPT=$($PY - "$T" <<'PY'
+import json, sys
+T = sys.argv[1]
+r = json.load(open(f"{T}/k4.json"))
+runs, kept = r["phases"], r["phase"]
+assert r["options"]["phases"] == 4 and len(runs) == 4, r["options"]
+assert all("irregular" in e for e in runs), runs  # oblique walls: four distinct starts
+best = min(range(4), key=lambda k: (runs[k]["irregular"], -runs[k]["pair_quality"], k))
+assert kept == best, (kept, best, runs)
+# the phases differ: a selection that cannot choose would not be a test
+assert len({(e["irregular"], round(e["pair_quality"], 9)) for e in runs}) > 1, runs
+a = json.load(open(f"{T}/auto.json"))
+assert a["options"]["phases"] == 4 and a["phase"] == kept, (a["options"], a.get("phase"))
+assert json.load(open(f"{T}/one.json"))["options"]["phases"] == 1
+print(*runs[kept]["phase"], runs[kept]["irregular"])
+PY
+)
+read -r PX PY_ IRR <<< "$KEPT"
+lpcvt -q "$T/f45.msh" -o "$T/kept.msh" --lattice-phase "$PX" "$PY_"
+cmp "$T/k4.msh" "$T/kept.msh" || { echo "FAIL: --phases 4's output is not the run at its kept phase ($PX $PY_)" >&2; exit 1; }
+cmp "$T/k4.msh" "$T/auto.msh" || { echo "FAIL: the default (auto) is not the 4-phase run on a small frame" >&2; exit 1; }
+cmp "$T/one.msh" "$T/zero.msh" || { echo "FAIL: --phases 1 is not phase (0, 0)" >&2; exit 1; }
+recombine -q "$T/k4.msh" -o "$T/k4-quad.msh"
+GOT=$(meshquality "$T/k4-quad.msh" | $PY -c "import json, sys; print(json.load(sys.stdin)['irregular_interior_vertices'])")
+[ "$GOT" = "$IRR" ] || { echo "FAIL: recombine gives $GOT irregular interior vertices, the report says $IRR" >&2; exit 1; }
+
+# walls along the frame register both axes: one run, the others skipped
+lpcvt -q "$T/f0.msh" -o "$T/f0.msh.out.msh" --phases 4
+$PY - "$T/f0.msh.out.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+runs = r["phases"]
+assert "irregular" in runs[0] and all(e.get("same_start_as_earlier") for e in runs[1:]), runs
+assert r["phase"] == 0
+PY
+
+# refusals: one line, exit 2, nothing written
+for args in "--phases 4 --lattice-phase 0.5 0.5" "--lattice-phase 1.5 0"; do
+  set +e
+  lpcvt "$T/f45.msh" -o "$T/bad.msh" $args 2> "$T/err"
+  rc=$?
+  set -e
+  [ $rc -eq 2 ] || { echo "FAIL: lpcvt $args: exit $rc, expected 2" >&2; cat "$T/err" >&2; exit 1; }
+  [ "$(wc -l < "$T/err")" -eq 1 ] || { echo "FAIL: lpcvt $args: not one line" >&2; cat "$T/err" >&2; exit 1; }
+  [ ! -e "$T/bad.msh" ] || { echo "FAIL: lpcvt $args wrote its output" >&2; exit 1; }
+done
+echo "OK: lpcvt --phases keeps its best phase ($PX $PY_, $IRR irregular), equal to that phase's run"

@@ -1,0 +1,100 @@
+// Lattice phases (lpcvt/phases.hpp, lattice.hpp): the offsets, the seed's registration with a
+// phase, the lattice translated by it, and the auto rule.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <set>
+
+#include "helpers.hpp"
+#include "lpcvt/lattice.hpp"
+#include "lpcvt/phases.hpp"
+#include "lpcvt/run.hpp"
+
+using namespace lpcvt_test;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+double frac(double x) { return x - std::floor(x); }
+// distance of x from the nearest integer
+double off_integer(double x) { return std::abs(x - std::round(x)); }
+}  // namespace
+
+TEST_CASE("phases: offset 0 is no offset; every axis alone takes K distinct values in [0, 1)") {
+  CHECK(phase_offset(0, 1) == Vec2::Zero());
+  for (int K = 2; K <= 16; ++K) {
+    CHECK(phase_offset(0, K) == Vec2::Zero());
+    std::set<long> xs, ys;
+    for (int k = 0; k < K; ++k) {
+      const Vec2 o = phase_offset(k, K);
+      CHECK(o.x() >= 0);
+      CHECK(o.x() < 1);
+      CHECK(o.y() >= 0);
+      CHECK(o.y() < 1);
+      CHECK(off_integer(o.x() * K) < 1e-12);  // multiples of 1/K
+      CHECK(off_integer(o.y() * K) < 1e-12);
+      xs.insert(std::lround(o.x() * K));
+      ys.insert(std::lround(o.y() * K));
+    }
+    CHECK(static_cast<int>(xs.size()) == K);
+    CHECK(static_cast<int>(ys.size()) == K);
+  }
+  // spread over the square, not on its diagonal (K = 4: a = 3 -> the anti-diagonal pair)
+  CHECK(phase_offset(1, 5) == Vec2(0.2, 0.6));
+}
+
+TEST_CASE("phases: the seed takes the walls' phase on a registered axis and the given phase on the other") {
+  // lattice M = diag(1/h, 1/h); wall points at metric positions (k, k phi) from y0: all in phase
+  // along axis 0 (integer k: frac = const), spread along axis 1 (k phi mod 1: irrational)
+  const double h = 0.1, phi = 0.6180339887498949;
+  const Mat2 M = Mat2::Identity() / h;
+  const Vec2 y0(0.03, 0.07);
+  std::vector<Vec2> fixed;
+  for (int k = -5; k <= 5; ++k) fixed.push_back(y0 + h * Vec2(k + 0.2, k * phi));
+  bool reg[2] = {false, false};
+  const Vec2 y = register_seed(y0, M, fixed, 12.0, Vec2(0.25, 0.5), reg);
+  CHECK(reg[0]);
+  CHECK_FALSE(reg[1]);
+  const Vec2 u = M * (y - y0);
+  CHECK(std::abs(u.x() - 0.2) < 1e-9);  // registered: the walls' phase, not 0.25
+  CHECK(std::abs(u.y() - 0.5) < 1e-12); // free: the requested phase
+  // phase 0 leaves the free axis alone (the run without phases)
+  const Vec2 y1 = register_seed(y0, M, fixed, 12.0, Vec2::Zero(), reg);
+  CHECK(std::abs((M * (y1 - y0)).y()) < 1e-12);
+}
+
+TEST_CASE("phases: the lattice start is translated by M^-1 phase") {
+  // constant frame at 30 degrees, stretch 4; no fixed points, so no axis is registered
+  Mesh m = quadapt::make_structured_quads(8, 8, 0, 1, 0, 1);
+  set_frame(m, 0.08, 0.02, 30 * kPi / 180);
+  const Background bg = Background::from_frame(m, 1.0, "test");
+  const Mat2 M = bg.metric(0, Vec2(0.0625, 0.0625));
+  const std::vector<Vec2> p0 = lattice_points(bg, {});
+  const std::vector<Vec2> p1 = lattice_points(bg, {}, 0.75, 10000000, Vec2(0.5, 0.25));
+  REQUIRE(p0.size() > 100);
+  REQUIRE(p1.size() > 100);
+  CHECK(std::abs(static_cast<double>(p1.size()) - p0.size()) < 0.1 * p0.size());
+  // every point of p1 sits at lattice coordinates (i + 0.5, j + 0.25) relative to p0's seed
+  int bad = 0;
+  for (const Vec2& p : p1) {
+    const Vec2 u = M * (p - p0[0]);
+    if (off_integer(u.x() - 0.5) > 1e-6 || off_integer(u.y() - 0.25) > 1e-6) ++bad;
+  }
+  CHECK(bad == 0);
+  // and p0 is the unshifted lattice
+  for (const Vec2& p : p0) {
+    const Vec2 u = M * (p - p0[0]);
+    CHECK(off_integer(u.x()) < 1e-6);
+    CHECK(off_integer(u.y()) < 1e-6);
+  }
+  (void)frac;
+}
+
+TEST_CASE("phases: auto runs kAutoPhases phases up to kAutoPhasePoints points, one above") {
+  Mesh m = quadapt::make_structured_quads(4, 4, 0, 1, 0, 1);
+  set_frame(m, 0.05, 0.05, 0);  // metric area 1 / 0.05^2 = 400
+  const Background small = Background::from_frame(m, 1.0, "test");
+  CHECK(small.metric_area() == doctest::Approx(400));
+  CHECK(auto_phases(small) == kAutoPhases);
+  CHECK(auto_phases(small.scaled(std::sqrt(kAutoPhasePoints / 400) * 1.01)) == 1);
+  CHECK(auto_phases(small.scaled(std::sqrt(kAutoPhasePoints / 400) * 0.99)) == kAutoPhases);
+}
