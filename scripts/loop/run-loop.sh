@@ -4,7 +4,7 @@
 #   run-loop.sh --case CASE.json --mesh START.msh --p P --method lpcvt|bamg|fixed-fraction|uniform
 #               --mode feature|goal --steps N --growth G --out DIR
 #               [--maxdofs N] [--fraction F] [--ff-by FIELD] [--seed S] [--smooth-bamg yes|no]
-#               [--max-anisotropy A] [--start-jitter J] [--fit-frame raw|meshed]
+#               [--max-anisotropy A] [--start-jitter J] [--fit-frame raw|meshed] [--phases N]
 #               [--pictures yes|no] [--window x0,x1,y0,y1] [--thesis-case KEY] [--check-only]
 #
 # Every input is checked, and every tool the method needs is looked up, BEFORE any work starts.
@@ -35,6 +35,7 @@ die() { echo "loop: error: $*" >&2; exit 2; }
 CASE="" MESH="" P="" METHOD="" MODE="" STEPS="6" GROWTH="1.5" OUT="" MAXDOFS="0" FRACTION="0.3" FF_BY=""
 SEED="1" JITTER="0" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0 GEOMETRY="" ORDER=""
 MAX_ANISO=""  # size-solve --max-anisotropy; empty = its default (25)
+PHASES=""        # lpcvt --phases N (lattice phases tried; empty: lpcvt's default, auto)
 START_JITTER="0"  # > 0: the start mesh's interior nodes moved at random from SEED (meshconvert --jitter)
 FIT_FRAME="raw"   # lpcvt: quadsmooth fits size-solve's frame (raw) or the one lpcvt meshed (meshed: --write-frame)
 while [ $# -gt 0 ]; do
@@ -51,7 +52,7 @@ while [ $# -gt 0 ]; do
     --seed) SEED="$val" ;; --jitter) JITTER="$val" ;; --smooth-bamg) SMOOTH_BAMG="$val" ;; --pictures) PICTURES="$val" ;;
     --window) WINDOW="$val" ;; --thesis-case) THESIS_KEY="$val" ;;
     --geometry) GEOMETRY="$val" ;; --order) ORDER="$val" ;; --max-anisotropy) MAX_ANISO="$val" ;;
-    --start-jitter) START_JITTER="$val" ;; --fit-frame) FIT_FRAME="$val" ;;
+    --start-jitter) START_JITTER="$val" ;; --phases) PHASES="$val" ;; --fit-frame) FIT_FRAME="$val" ;;
     *) die "unknown option $opt (see docs/loop.md)" ;;
   esac
 done
@@ -94,6 +95,8 @@ is_num "$JITTER" || die "JITTER='$JITTER': must be a non-negative number (lpcvt 
   || die "MAX_ANISOTROPY='$MAX_ANISO': must be a number >= 1 (size-solve --max-anisotropy, largest h1/h2)"
 is_num "$START_JITTER" && "$PY" -c "import sys; sys.exit(0 if float('$START_JITTER') <= 0.45 else 1)" \
   || die "START_JITTER='$START_JITTER': must be a number in [0, 0.45] (meshconvert --jitter: the largest move over the shortest edge)"
+[ -z "$PHASES" ] || { is_uint "$PHASES" && [ "$PHASES" -le 16 ]; } \
+  || die "PHASES='$PHASES': must be an integer in [0, 16] (lpcvt --phases: lattice phases tried, 0 = auto)"
 [ -n "$OUT" ] || die "OUT is not set (the run directory)"
 case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
@@ -167,10 +170,12 @@ sjit=()
 [ "$START_JITTER" = 0 ] || sjit=(start_jitter="$START_JITTER")
 fitf=()  # likewise FIT_FRAME, only when not the default and only for the method it changes
 [ "$FIT_FRAME" = raw ] || [ "$METHOD" != lpcvt ] || fitf=(fit_frame="$FIT_FRAME")
+phs=()  # likewise PHASES
+[ -z "$PHASES" ] || [ "$METHOD" != lpcvt ] || phs=(phases="$PHASES")
 msg="$(ctl params "$OUT/loop.json" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
   method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" ${jit[@]+"${jit[@]}"} \
   smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} \
-  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} 2>&1)" || die "$msg"
+  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} ${phs[@]+"${phs[@]}"} 2>&1)" || die "$msg"
 
 name="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
 say() { echo "[$name] $*"; }
@@ -363,7 +368,7 @@ while :; do
           # two): lpcvt again
           { [ -f "$fit" ] && ! [ "$d/tri.msh" -nt "$fit" ]; } || rm -f "$d/tri.msh"
         fi
-        run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED" --jitter "$JITTER" ${wf[@]+"${wf[@]}"} ${geo[@]+"${geo[@]}"}
+        run_tool "$d" lpcvt "$d/tri.msh" "$d/frame.msh" -- lpcvt "$d/frame.msh" -o "$d/tri.msh" --seed "$SEED" --jitter "$JITTER" ${PHASES:+--phases "$PHASES"} ${wf[@]+"${wf[@]}"} ${geo[@]+"${geo[@]}"}
         # the tools' defaults: recombine matches in the metric of the frame lpcvt attached to
         # tri.msh (no node moves; docs/recombine.md)
         run_tool "$d" recombine "$d/quad.msh" "$d/tri.msh" -- recombine "$d/tri.msh" -o "$d/quad.msh"
