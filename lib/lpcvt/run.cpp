@@ -1,5 +1,6 @@
 #include "lpcvt/run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -192,20 +193,19 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
       LpcvtOptions o = opt;
       o.lattice_phase = phase_offset(k, phases);
       nlohmann::json e = {{"phase", {o.lattice_phase.x(), o.lattice_phase.y()}}};
-      // walls along the frame register both axes: the same start, the same run again
-      o.start_only = true;
-      const std::vector<Vec2> start = run_lpcvt(bg, o, {}).initial_sites;
-      bool repeat = false;
-      for (const auto& s0 : starts) repeat |= s0 == start;
-      if (repeat) {
-        e["same_start_as_earlier"] = true;
-        runs.push_back(e);
-        continue;
+      if (k > 0) {
+        // walls along the frame register both axes: the same start, the same run again
+        o.start_only = true;
+        if (std::find(starts.begin(), starts.end(), run_lpcvt(bg, o, {}).initial_sites) != starts.end()) {
+          e["same_start_as_earlier"] = true;
+          runs.push_back(e);
+          continue;
+        }
+        o.start_only = false;
       }
-      starts.push_back(start);
-      o.start_only = false;
       const auto t0 = std::chrono::steady_clock::now();
       LpcvtResult rk = run_lpcvt(bg, o, {});
+      starts.push_back(rk.initial_sites);
       const TriangulationCheck ck = check_triangulation(rk.mesh);
       if (!ck.ok()) throw NumericalError("lpcvt: invalid output triangulation (phase " + std::to_string(k) + "): " + ck.summary());
       const PhaseScore sc = recombine_score(rk.mesh);
