@@ -72,7 +72,9 @@ def run(cmd):
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
 
 
-def one(binp, out, a_deg, s, bamg, seed_cell=0):
+def make_frame(out, a_deg, s, seed_cell=0):
+    """The constant frame of (angle a_deg, stretch s) in OUT, seed cell made finer when given:
+    (path, tag, h1, h2, angle in radians)."""
     h = math.sqrt(0.05 * 0.005)
     h1, h2 = h * math.sqrt(s), h / math.sqrt(s)
     a = math.radians(a_deg)
@@ -80,6 +82,11 @@ def one(binp, out, a_deg, s, bamg, seed_cell=0):
     f = os.path.join(out, f"frame-{tag}.msh")
     run(["/usr/bin/python3", FRAME_PY, f, "--n", "16", "--h1", repr(h1), "--h2", repr(h2), "--theta", repr(a)]
         + (["--finer-cell", str(seed_cell)] if seed_cell else []))
+    return f, tag, h1, h2, a
+
+
+def one(binp, out, a_deg, s, bamg, seed_cell=0):
+    f, tag, h1, h2, a = make_frame(out, a_deg, s, seed_cell)
     rows = []
     paths = ["lpcvt"] + (["bamgquad"] if bamg and not seed_cell else [])
     for path in paths:
