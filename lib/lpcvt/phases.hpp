@@ -17,8 +17,14 @@
 // lower phase index. Phase k moves the lattice by phase_offset(k, K) lattice units along the axes
 // the walls do not register; a phase whose start equals an earlier one's (both axes registered:
 // walls along the frame) is not run again. Cost: up to K runs of lpcvt and of the matching.
+// With T > 1 OpenMP threads the phases run T at a time, each on one thread (a run of a few
+// thousand points hardly gains from a second thread; the result is the same for any T).
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
+#include "lpcvt/lpcvt.hpp"
 #include "mesh/mesh.hpp"
 
 namespace quadapt::lpcvt {
@@ -43,5 +49,17 @@ struct PhaseScore {
 /// Recombines `tri` (triangles with the cell field Vinv, as run_lpcvt writes them) with the
 /// recombine tool's defaults (metric matching, split into four) and scores the result.
 PhaseScore recombine_score(const Mesh& tri);
+
+struct PhaseRuns {
+  LpcvtResult best;            ///< the kept phase's run
+  int kept = 0;                ///< its index
+  nlohmann::json runs;         ///< per phase: phase, irregular, interior, unmatched_triangles,
+                               ///< pair_quality, evaluations, seconds; or same_start_as_earlier
+};
+
+/// run_lpcvt from phases 0..n-1 of `opt` (opt.lattice_phase is replaced), the best kept (above).
+/// Throws NumericalError when a phase's triangulation is invalid. `log` gets one line per phase.
+PhaseRuns run_phases(const Background& bg, const LpcvtOptions& opt, int n,
+                     const std::function<void(const std::string&)>& log = {});
 
 }  // namespace quadapt::lpcvt

@@ -1,7 +1,5 @@
 #include "lpcvt/run.hpp"
 
-#include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <memory>
 
@@ -184,51 +182,10 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
   if (phases == 1) {
     r = run_lpcvt(bg, opt, log);
   } else {
-    // best of `phases` lattice phases by the recombined mesh's irregular vertices (phases.hpp)
-    nlohmann::json runs = nlohmann::json::array();
-    std::vector<std::vector<Vec2>> starts;
-    PhaseScore best;
-    int kept = -1;
-    for (int k = 0; k < phases; ++k) {
-      LpcvtOptions o = opt;
-      o.lattice_phase = phase_offset(k, phases);
-      nlohmann::json e = {{"phase", {o.lattice_phase.x(), o.lattice_phase.y()}}};
-      if (k > 0) {
-        // walls along the frame register both axes: the same start, the same run again
-        o.start_only = true;
-        if (std::find(starts.begin(), starts.end(), run_lpcvt(bg, o, {}).initial_sites) != starts.end()) {
-          e["same_start_as_earlier"] = true;
-          runs.push_back(e);
-          continue;
-        }
-        o.start_only = false;
-      }
-      const auto t0 = std::chrono::steady_clock::now();
-      LpcvtResult rk = run_lpcvt(bg, o, {});
-      starts.push_back(rk.initial_sites);
-      const TriangulationCheck ck = check_triangulation(rk.mesh);
-      if (!ck.ok()) throw NumericalError("lpcvt: invalid output triangulation (phase " + std::to_string(k) + "): " + ck.summary());
-      const PhaseScore sc = recombine_score(rk.mesh);
-      e["irregular"] = sc.irregular;
-      e["interior"] = sc.interior;
-      e["unmatched_triangles"] = sc.unmatched;
-      e["pair_quality"] = sc.quality;
-      e["evaluations"] = rk.evaluations;
-      e["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      runs.push_back(e);
-      say(log, "phase " + std::to_string(k) + " (" + sci(o.lattice_phase.x()) + ", " + sci(o.lattice_phase.y()) +
-                   "): " + std::to_string(rk.evaluations) + " evaluations, " + std::to_string(sc.irregular) + " of " +
-                   std::to_string(sc.interior) + " interior vertices irregular after recombine, pair quality " +
-                   sci(sc.quality));
-      if (kept < 0 || sc.better_than(best)) {
-        best = sc;
-        kept = k;
-        r = std::move(rk);
-      }
-    }
-    rep["phases"] = runs;
-    rep["phase"] = kept;
-    say(log, "kept phase " + std::to_string(kept));
+    PhaseRuns pr = run_phases(bg, opt, phases, log);
+    r = std::move(pr.best);
+    rep["phases"] = std::move(pr.runs);
+    rep["phase"] = pr.kept;
   }
   const TriangulationCheck chk = check_triangulation(r.mesh);
   if (!chk.ok()) throw NumericalError("lpcvt: invalid output triangulation: " + chk.summary());

@@ -3,7 +3,8 @@
 # to the lattice) lpcvt --phases 4 runs four lattice phases and keeps the one whose recombined
 # mesh has the fewest irregular interior vertices (ties: the higher pair quality):
 #   - the report lists the four runs and the kept index is their best by that rule;
-#   - the output is byte-identical to a one-phase run at the kept phase (--lattice-phase), and
+#   - the output is byte-identical to a one-phase run at the kept phase (--lattice-phase) and to
+#     the run with two threads (the phases then run two at a time), and
 #     recombine on it gives exactly the irregular count the report states;
 #   - the default (auto) on this small frame is 4 phases; --phases 1 is phase 0's run;
 #   - on a frame aligned with the walls every phase has the same start: one run, three skipped;
@@ -22,6 +23,7 @@ frame f45 45
 frame f0 0
 
 lpcvt -q "$T/f45.msh" -o "$T/k4.msh" --phases 4
+lpcvt -q "$T/f45.msh" -o "$T/k4-t2.msh" --phases 4 --threads 2   # phases two at a time
 lpcvt -q "$T/f45.msh" -o "$T/auto.msh"
 lpcvt -q "$T/f45.msh" -o "$T/one.msh" --phases 1
 lpcvt -q "$T/f45.msh" -o "$T/zero.msh" --lattice-phase 0 0
@@ -45,6 +47,7 @@ PY
 read -r PX PY_ IRR <<< "$KEPT"
 lpcvt -q "$T/f45.msh" -o "$T/kept.msh" --lattice-phase "$PX" "$PY_"
 same_bytes "$T/k4.msh" "$T/kept.msh"    # --phases 4's output is the run at its kept phase
+same_bytes "$T/k4.msh" "$T/k4-t2.msh"   # the same for any thread count
 same_bytes "$T/k4.msh" "$T/auto.msh"    # the default (auto) is the 4-phase run on a small frame
 same_bytes "$T/one.msh" "$T/zero.msh"   # --phases 1 is phase (0, 0)
 recombine -q "$T/k4.msh" -o "$T/k4-quad.msh"
