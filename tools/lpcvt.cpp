@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(0.0, 10.0));
   app.add_option("--phases", job.phases, "Lattice start: run from this many lattice phases (translations of the "
                  "lattice against walls oblique to the frame) and keep the one whose recombined mesh has the fewest "
-                 "irregular interior vertices (docs/lpcvt.md, Phases); 1 = one run; 0 = auto: 4 when the frame asks for "
+                 "irregular interior vertices (docs/lpcvt.md, Method 11); 1 = one run; 0 = auto: 4 when the frame asks for "
                  "at most 4000 points, else 1")
       ->capture_default_str()->check(CLI::Range(0, 16));
   std::vector<double> lattice_phase;

@@ -55,7 +55,7 @@ Background saddle_background(int grid, bool sampled, const LpcvtJob& job, nlohma
 
 /// The default number of lattice phases: kAutoPhases where the background asks for at most
 /// kAutoPhasePoints points (metric area), 1 above: there the walls' rows are a small share of the
-/// points and the phase changes the irregular vertices by < 1 % (docs/lpcvt.md, Phases).
+/// points and the phase changes the irregular vertices by < 1 % (docs/lpcvt.md, Method 11).
 constexpr int kAutoPhases = 4;
 constexpr double kAutoPhasePoints = 4000;
 int auto_phases(const Background& bg);
