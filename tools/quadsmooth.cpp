@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
             "(Zhou & Shimada 2000, the smoothing of thesis §4.6). A move that would invert a cell or "
             "lower the smallest angle of the cells around the node is halved (--halvings times) "
             "and otherwise skipped, so the mesh's minimum angle never decreases and no cell "
-            "inverts. Boundary and hanging nodes stay fixed. Gauss-Seidel sweeps in node order "
+            "inverts. Boundary and hanging nodes stay fixed (the shape fit slides wall nodes along "
+            "straight walls, --walls). Gauss-Seidel sweeps in node order "
             "(deterministic). Input: a conforming quad (or mixed) mesh without inverted cells; "
             "output: the same connectivity and boundary groups, new interior node positions, "
             "no fields. With --frame FRAME.msh (cell field Vinv, M = V^-1) the angles are measured "
@@ -63,6 +64,13 @@ int main(int argc, char** argv) {
                  "Shape fit: the metric of each corner, at its own node (node) or the cell's at its centroid "
                  "(cell: all corners of a quad in one metric, as meshquality --frame measures it)")
       ->capture_default_str()->check(CLI::IsMember({"node", "cell"}));
+  std::string walls = "slide";
+  app.add_option("--walls", walls,
+                 "Shape fit: wall nodes slide along their wall where it is straight, between their two wall "
+                 "neighbours (slide: the lattice's rows may meet an oblique wall square in the metric "
+                 "instead of shearing the mesh; corners, ends of boundary groups and nodes of curved walls "
+                 "stay) or every boundary node stays (fixed). docs/quadsmooth.md, \"Walls\"")
+      ->capture_default_str()->check(CLI::IsMember({"slide", "fixed"}));
   app.add_option("--frame", frame_path,
                  "Frame file (background mesh with the cell field Vinv): smooth in its metric space")
       ->check(CLI::ExistingFile);
@@ -79,7 +87,13 @@ int main(int argc, char** argv) {
     if (method != "shape" && tool.app().count("--corner-metric"))
       throw InputError(in, "--corner-metric applies to the shape fit only (--method shape with --frame)");
     shape.cell_metric = corner_metric == "cell";
-    if (method == "shape") tool.option("corner_metric", corner_metric);
+    if (method != "shape" && tool.app().count("--walls"))
+      throw InputError(in, "--walls applies to the shape fit only (--method shape with --frame)");
+    shape.slide_walls = walls == "slide";
+    if (method == "shape") {
+      tool.option("corner_metric", corner_metric);
+      tool.option("walls", walls);
+    }
     tool.option("method", method);
     tool.option("sweeps", method == "shape" ? shape.sweeps : opt.sweeps);
     tool.option("halvings", opt.max_halvings);
@@ -117,6 +131,7 @@ int main(int argc, char** argv) {
     auto& rep = tool.report();
     rep["cells"] = m.num_cells();
     rep["interior_nodes"] = st.interior_nodes;
+    if (method == "shape") rep["sliding_wall_nodes"] = st.sliding_nodes;
     rep["sweeps"] = st.sweeps;
     rep["moves_full"] = st.moves_full;
     rep["moves_reduced"] = st.moves_reduced;
@@ -125,7 +140,8 @@ int main(int argc, char** argv) {
     rep["quality_before"] = to_json(before);
     rep["quality"] = to_json(after);
     tool.log(std::to_string(st.sweeps) + " sweeps over " + std::to_string(st.interior_nodes) +
-             " interior nodes; min angle " + sci(before.min_angle_deg) + " -> " +
+             " interior nodes" + (st.sliding_nodes ? " and " + std::to_string(st.sliding_nodes) + " wall nodes" : "") +
+             "; min angle " + sci(before.min_angle_deg) + " -> " +
              sci(after.min_angle_deg) + " deg, mean cell min angle " +
              sci(before.mean_cell_min_angle_deg) + " -> " + sci(after.mean_cell_min_angle_deg));
     {

@@ -155,6 +155,53 @@ double count_move(SmoothStats& st, int h, const Vec2& step) {
   st.max_displacement = std::max(st.max_displacement, d);
   return d;
 }
+// A wall node slides only this far towards its wall neighbours (fraction of the segment a-b).
+constexpr double kSlideMin = 0.1;
+// A wall node is on a straight wall when its distance from the line of its wall neighbours a, b
+// is at most this times |b - a| (rounding only: a polyline approximating a curve turns by much more).
+constexpr double kCollinear = 1e-9;
+// The shape fit's guard accepts a corner sine this far below its bound (rounding).
+constexpr double kSineSlack = 1e-12;
+
+std::vector<WallSlide> wall_slides(const Mesh& m, const Topology& topo) {
+  const int nn = m.num_nodes();
+  // listed boundary edges per node (group and other end)
+  std::vector<std::vector<std::pair<int, int>>> listed(nn);
+  for (const BoundaryEdge& e : m.boundary) {
+    if (e.v[0] < 0 || e.v[1] < 0 || e.v[0] >= nn || e.v[1] >= nn) continue;
+    listed[e.v[0]].emplace_back(e.v[1], e.group);
+    listed[e.v[1]].emplace_back(e.v[0], e.group);
+  }
+  std::vector<WallSlide> out;
+  for (int v = 0; v < nn; ++v) {
+    if (!topo.fixed[v] || topo.node_cells[v].empty()) continue;
+    int ends[2], nf = 0;
+    bool ok = true;
+    for (int w : topo.nbrs[v])
+      if (topo.edge(v, w).b < 0) {
+        if (nf == 2) { ok = false; break; }
+        ends[nf++] = w;
+      }
+    if (!ok || nf != 2) continue;
+    // the listed edges at v: none, or exactly the two free edges, in one group
+    if (!listed[v].empty()) {
+      if (listed[v].size() != 2 || listed[v][0].second != listed[v][1].second) continue;
+      const int l0 = listed[v][0].first, l1 = listed[v][1].first;
+      if (!((l0 == ends[0] && l1 == ends[1]) || (l0 == ends[1] && l1 == ends[0]))) continue;
+    }
+    // a hanging node: its two free edges lie on a cell edge a-b
+    if (topo.edges.count(Topology::key(ends[0], ends[1]))) continue;
+    const Vec2 &xa = m.nodes[ends[0]], &xb = m.nodes[ends[1]], &x = m.nodes[v];
+    const Vec2 d = xb - xa;
+    const double dd = d.squaredNorm();
+    if (!(dd > 0)) continue;
+    const double lambda = (x - xa).dot(d) / dd;
+    if (std::abs(cross2(d, x - xa)) > kCollinear * dd || !(lambda > 0 && lambda < 1)) continue;
+    out.push_back({v, ends[0], ends[1]});
+  }
+  return out;
+}
+
 }  // namespace
 
 SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt, const NodeMetric& metric) {
@@ -216,11 +263,24 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt, const NodeMetric& me
   return st;
 }
 
+std::vector<WallSlide> wall_slides(const Mesh& m) {
+  const Topology topo = build_topology(m);
+  return wall_slides(m, topo);
+}
+
 SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetric& metric) {
   SmoothStats st;
   const int nn = m.num_nodes();
   const Topology topo = build_topology(m);
   for (int v = 0; v < nn; ++v) st.interior_nodes += topo.fixed[v] ? 0 : 1;
+  // wall nodes that slide along their straight wall (slide[v].a >= 0), when asked
+  std::vector<WallSlide> slide(nn);
+  if (opt.slide_walls)
+    for (const WallSlide& w : wall_slides(m, topo)) {
+      slide[w.node] = w;
+      ++st.sliding_nodes;
+    }
+  auto movable = [&](int v) { return !topo.fixed[v] || slide[v].a >= 0; };
   const double lo = opt.size_min * opt.target_edge, hi = opt.size_max * opt.target_edge;
   // ideal corner edges (next, previous), counter-clockwise: a square's and an equilateral triangle's
   const Vec2 quad_e1(0, 1), tri_e1(0.5, std::sqrt(3.0) / 2);
@@ -237,7 +297,7 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
   {
     std::vector<int> colour(nn, -1), seen(nn, -1);
     for (int i = 0; i < nn; ++i) {
-      if (topo.fixed[i]) continue;
+      if (!movable(i)) continue;
       for (int c : topo.node_cells[i])
         for (int k = 0; k < m.cells[c].nv; ++k)
           if (colour[m.cells[c].v[k]] >= 0) seen[colour[m.cells[c].v[k]]] = i;
@@ -292,14 +352,27 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
       }
     }
     if (nsize == 0 || !(A.determinant() > 0)) return;
-    const Vec2 step = A.inverse() * rhs - xi;
+    Vec2 step;
+    if (slide[i].a >= 0) {
+      // on its straight wall: x = x_a + lambda (x_b - x_a), the quadratic's minimiser on that line,
+      // lambda kept in [kSlideMin, 1 - kSlideMin] (the node stays between its wall neighbours)
+      const Vec2 &xa = m.nodes[slide[i].a], d = m.nodes[slide[i].b] - xa;
+      const double dAd = d.dot(A * d);
+      if (!(dAd > 0)) return;
+      const double lambda = std::clamp(d.dot(rhs - A * xa) / dAd, kSlideMin, 1 - kSlideMin);
+      step = xa + lambda * d - xi;
+    } else {
+      step = A.inverse() * rhs - xi;
+    }
     if (!(step.norm() > 0) || !std::isfinite(step.x()) || !std::isfinite(step.y())) return;
     const auto& cells = topo.node_cells[i];
     const Mat2 I = Mat2::Identity();
     const double before = cells_min_sine(m, cells, T), before_phys = cells_min_sine(m, cells, I);
+    // (kSineSlack: a wall node sliding along its wall leaves its neighbours' corners on the wall
+    // unchanged but for rounding; without the slack rounding alone would decide such a move)
     const int h = guarded_move(m, i, xi, step, cells, opt.max_halvings, [&] {
-      return cells_min_sine(m, cells, T) >= std::min(before, opt.min_sine) &&
-             cells_min_sine(m, cells, I) >= std::min(before_phys, opt.min_sine_physical);
+      return cells_min_sine(m, cells, T) >= std::min(before, opt.min_sine) - kSineSlack &&
+             cells_min_sine(m, cells, I) >= std::min(before_phys, opt.min_sine_physical) - kSineSlack;
     });
     const double d = count_move(local, h, step);
     if (d < 0) return;

@@ -52,6 +52,7 @@ struct SmoothStats {
   long moves_full = 0;        ///< accepted moves at the full step
   long moves_reduced = 0;     ///< accepted after halving
   long moves_rejected = 0;    ///< left in place
+  int sliding_nodes = 0;      ///< shape fit: wall nodes that slide along a straight wall
   double min_angle_before = 0, min_angle_after = 0;  ///< degrees, whole mesh
   double max_displacement = 0;                       ///< largest accepted move (length units)
 };
@@ -88,8 +89,9 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt = {}, const NodeMetri
 /// fall below min(its old value, min_sine) in node i's metric space, nor below min(its old
 /// value, min_sine_physical) in physical space; otherwise it is halved, up to max_halvings
 /// times, else skipped. (Without the physical rule the S-shock loop's graded frames got cells
-/// of corner angle 0.0 degrees.) Nodes in index order (deterministic); boundary and hanging
-/// nodes fixed.
+/// of corner angle 0.0 degrees.) Nodes in index order (deterministic); hanging nodes fixed,
+/// boundary nodes fixed except those that slide along a straight wall (slide_walls: the
+/// minimiser of the same fit on the wall's line, docs/quadsmooth.md "Walls").
 struct ShapeSmoothOptions {
   int sweeps = 60;            ///< Gauss-Seidel passes at most
   /// a node is visited again only while a node of its cells moved more than this times its mean
@@ -106,7 +108,23 @@ struct ShapeSmoothOptions {
   /// stays in the moving node's metric either way. Not the default: it raises the per-cell
   /// metric figures on rough frames but costs the adaptive loops accuracy (docs/quadsmooth.md).
   bool cell_metric = false;
+  /// wall nodes slide along their wall where it is straight (wall_slides below): the node
+  /// moves to the fit's minimiser on the line through its two wall neighbours, kept between them
+  /// (at least 1/10 of the way from each), under the same guard. Off: every boundary node is fixed.
+  bool slide_walls = true;
 };
+
+/// A boundary node that may slide: `node` lies on the straight segment between its two wall
+/// neighbours `a` and `b` (within 1e-9 |b - a|, strictly between them).
+struct WallSlide {
+  int node = -1, a = -1, b = -1;
+};
+
+/// The boundary nodes of m that may slide along their wall: exactly two free edges (edges of one
+/// cell), collinear (above); the boundary edges m lists at the node, if any, are those two and in
+/// one group (so no corner and no end of a group moves); not a hanging node (its two free edges
+/// are not halves of a cell edge a-b). In node order.
+std::vector<WallSlide> wall_slides(const Mesh& m);
 
 /// Smooths m in place (conforming quad, triangle or mixed mesh, cells counter-clockwise) by the
 /// corner-similarity fit above, in the space mapped by `metric` (empty: physical space).

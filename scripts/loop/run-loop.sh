@@ -5,6 +5,7 @@
 #               --mode feature|goal --steps N --growth G --out DIR
 #               [--maxdofs N] [--fraction F] [--ff-by FIELD] [--seed S] [--smooth-bamg yes|no]
 #               [--max-anisotropy A] [--start-jitter J] [--fit-frame raw|meshed] [--phases N]
+#               [--walls slide|fixed]
 #               [--pictures yes|no] [--window x0,x1,y0,y1] [--thesis-case KEY] [--check-only]
 #
 # Every input is checked, and every tool the method needs is looked up, BEFORE any work starts.
@@ -36,6 +37,7 @@ CASE="" MESH="" P="" METHOD="" MODE="" STEPS="6" GROWTH="1.5" OUT="" MAXDOFS="0"
 SEED="1" JITTER="0" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0 GEOMETRY="" ORDER=""
 MAX_ANISO=""  # size-solve --max-anisotropy; empty = its default (25)
 PHASES=""        # lpcvt --phases N (lattice phases tried; empty: lpcvt's default, auto)
+WALLS=""         # quadsmooth --walls slide|fixed (lpcvt path; empty: quadsmooth's default, slide)
 START_JITTER="0"  # > 0: the start mesh's interior nodes moved at random from SEED (meshconvert --jitter)
 FIT_FRAME="raw"   # lpcvt: quadsmooth fits size-solve's frame (raw) or the one lpcvt meshed (meshed: --write-frame)
 while [ $# -gt 0 ]; do
@@ -52,7 +54,7 @@ while [ $# -gt 0 ]; do
     --seed) SEED="$val" ;; --jitter) JITTER="$val" ;; --smooth-bamg) SMOOTH_BAMG="$val" ;; --pictures) PICTURES="$val" ;;
     --window) WINDOW="$val" ;; --thesis-case) THESIS_KEY="$val" ;;
     --geometry) GEOMETRY="$val" ;; --order) ORDER="$val" ;; --max-anisotropy) MAX_ANISO="$val" ;;
-    --start-jitter) START_JITTER="$val" ;; --phases) PHASES="$val" ;; --fit-frame) FIT_FRAME="$val" ;;
+    --start-jitter) START_JITTER="$val" ;; --phases) PHASES="$val" ;; --walls) WALLS="$val" ;; --fit-frame) FIT_FRAME="$val" ;;
     *) die "unknown option $opt (see docs/loop.md)" ;;
   esac
 done
@@ -97,6 +99,8 @@ is_num "$START_JITTER" && "$PY" -c "import sys; sys.exit(0 if float('$START_JITT
   || die "START_JITTER='$START_JITTER': must be a number in [0, 0.45] (meshconvert --jitter: the largest move over the shortest edge)"
 [ -z "$PHASES" ] || { is_uint "$PHASES" && [ "$PHASES" -le 16 ]; } \
   || die "PHASES='$PHASES': must be an integer in [0, 16] (lpcvt --phases: lattice phases tried, 0 = auto)"
+[ -z "$WALLS" ] || [ "$WALLS" = slide ] || [ "$WALLS" = fixed ] \
+  || die "WALLS='$WALLS': must be slide or fixed (quadsmooth --walls: wall nodes slide along straight walls or stay)"
 [ -n "$OUT" ] || die "OUT is not set (the run directory)"
 case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
@@ -172,10 +176,12 @@ fitf=()  # likewise FIT_FRAME, only when not the default and only for the method
 [ "$FIT_FRAME" = raw ] || [ "$METHOD" != lpcvt ] || fitf=(fit_frame="$FIT_FRAME")
 phs=()  # likewise PHASES
 [ -z "$PHASES" ] || [ "$METHOD" != lpcvt ] || phs=(phases="$PHASES")
+wls=()  # likewise WALLS
+[ -z "$WALLS" ] || [ "$METHOD" != lpcvt ] || wls=(walls="$WALLS")
 msg="$(ctl params "$OUT/loop.json" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
   method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" ${jit[@]+"${jit[@]}"} \
   smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} \
-  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} ${phs[@]+"${phs[@]}"} 2>&1)" || die "$msg"
+  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} ${phs[@]+"${phs[@]}"} ${wls[@]+"${wls[@]}"} 2>&1)" || die "$msg"
 
 name="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
 say() { echo "[$name] $*"; }
@@ -373,7 +379,7 @@ while :; do
         # tri.msh (no node moves; docs/recombine.md)
         run_tool "$d" recombine "$d/quad.msh" "$d/tri.msh" -- recombine "$d/tri.msh" -o "$d/quad.msh"
         run_tool "$d" quadsmooth "$d/adapted.msh" "$d/quad.msh" "$fit" -- \
-          quadsmooth "$d/quad.msh" -o "$d/adapted.msh" --frame "$fit"
+          quadsmooth "$d/quad.msh" -o "$d/adapted.msh" --frame "$fit" ${WALLS:+--walls "$WALLS"}
       else
         run_tool "$d" bamgquad "$d/quad.msh" "$d/frame.msh" -- bamgquad "$d/frame.msh" -o "$d/quad.msh" ${geo[@]+"${geo[@]}"}
         if [ "$SMOOTH_BAMG" = yes ]; then

@@ -63,6 +63,9 @@ rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --start-j
 rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --fit-frame smooth --out run-bad > log4d 2>&1 || rc=$?
 [ $rc -eq 2 ] && grep -q "FIT_FRAME='smooth': use raw" log4d || fail "FIT_FRAME smooth: exit $rc, $(cat log4d)"
 [ ! -e run-bad ] || fail "bad FIT_FRAME created the run directory"
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --walls loose --out run-bad > log4e 2>&1 || rc=$?
+[ $rc -eq 2 ] && grep -q "WALLS='loose': must be slide or fixed" log4e || fail "WALLS loose: exit $rc, $(cat log4e)"
+[ ! -e run-bad ] || fail "bad WALLS created the run directory"
 
 # --- resume with a working refine: step-0 is not redone (same bytes, same times), the loop ends with 0
 sleep 1.1  # a recomputed file would get a later modification time

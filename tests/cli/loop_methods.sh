@@ -92,4 +92,17 @@ make --no-print-directory -f "$SRC/Makefile.cases" loop BIN="$BIN" CASE="$SRC/ex
   MESH="$T/sq8.msh" P=1 METHOD=lpcvt MODE=feature STEPS=1 OUT="$out" PICTURES=no > "$out-raw.log" 2>&1 || rc=$?
 [ $rc -ne 0 ] && grep -q "fit_frame" "$out-raw.log" || fail "FIT_FRAME changed on the same OUT: exit $rc, $(cat "$out-raw.log")"
 ran=$((ran + 1))
+# WALLS=fixed: passed to quadsmooth (its report's options) and recorded in the run's parameters
+out="$T/lpcvt-walls"
+make --no-print-directory -f "$SRC/Makefile.cases" loop BIN="$BIN" CASE="$SRC/examples/cases/smooth.json" \
+  MESH="$T/sq8.msh" P=1 METHOD=lpcvt MODE=feature STEPS=1 OUT="$out" PICTURES=no WALLS=fixed > "$out.log" 2>&1 \
+  || { cat "$out.log" >&2; fail "WALLS=fixed loop failed"; }
+"$PY" - "$out/step-0/adapted.json" "$out/loop.json" "$T/lpcvt-fit/step-0/adapted.json" <<'PYEOF' || fail "WALLS=fixed: quadsmooth's walls"
+import json, sys
+rep, loop, dflt = (json.load(open(f)) for f in sys.argv[1:])
+assert rep["options"]["walls"] == "fixed" and rep["sliding_wall_nodes"] == 0, rep["options"]
+assert dflt["options"]["walls"] == "slide" and dflt["sliding_wall_nodes"] > 0, dflt["options"]
+assert json.dumps(loop).count('"walls": "fixed"') == 1, loop
+PYEOF
+ran=$((ran + 1))
 echo "loop methods CLI: $ran loops checked"

@@ -6,7 +6,7 @@
 # made finer by 1e-6 and that cell is mapped with the problem; then lpcvt's points and
 # triangles and recombine's quads must be the mapped ones (to 1e-9), and quadsmooth's mesh must
 # have the same cells, the same irregular vertices and the same metric figures (quadsmooth's
-# sweeps follow the node numbering: to 0.01 degrees). With the seed cell not mapped (cell 1 in
+# sweeps follow the node numbering: to 0.01 degrees with --walls fixed, 0.05 with sliding walls). With the seed cell not mapped (cell 1 in
 # all three) the outputs differ: on this frame the lattice's phase against the walls decides
 # where rows end (docs/quad-quality.md, "The lattice's phase").
 set -euo pipefail
@@ -34,6 +34,8 @@ chain() {  # chain NAME
   recombine -q "$T/$1-tri.msh" -o "$T/$1-quad.msh"
   quadsmooth -q "$T/$1-quad.msh" --frame "$T/$1.msh" -o "$T/$1-mesh.msh"
   meshquality "$T/$1-mesh.msh" --frame "$T/$1.msh" > "$T/$1.mq.json"
+  quadsmooth -q "$T/$1-quad.msh" --frame "$T/$1.msh" --walls fixed -o "$T/$1-fixed.msh"
+  meshquality "$T/$1-fixed.msh" --frame "$T/$1.msh" > "$T/$1-fixed.mq.json"
 }
 # cell 1 is the bottom-left one; rotating by +90 degrees ((x, y) -> (1 - y, x)) and mirroring
 # ((x, y) -> (1 - x, y)) both take it to the bottom-right one, cell N
@@ -70,13 +72,18 @@ for name, back in maps.items():
             ca = sorted(tuple(sorted(c)) for c in ea.get(et, []))
             cb = sorted(tuple(sorted(int(to_a[v]) for v in c)) for c in eb.get(et, []))
             if ca != cb: fail(f"{name} {stage}: the elements of type {et} are not the mapped ones")
-    qa = json.load(open(f"{T}/base.mq.json")); qb = json.load(open(f"{T}/{name}.mq.json"))
-    if qa["cells"] != qb["cells"] or qa["irregular_interior_share"] != qb["irregular_interior_share"]:
-        fail(f"{name} mesh: {qb['cells']} cells, irregular {qb['irregular_interior_share']}; "
-             f"the original {qa['cells']}, {qa['irregular_interior_share']}")
-    for key, tol in (("quad_angle_deviation_mean_deg", 0.01), ("scaled_jacobian_min", 1e-3)):
-        if abs(qa["metric"][key] - qb["metric"][key]) > tol:
-            fail(f"{name} mesh: metric {key} {qb['metric'][key]} against {qa['metric'][key]}")
+    # quadsmooth's Gauss-Seidel order follows the node numbering: with fixed walls the meshes agree
+    # to 0.01 degrees; with sliding walls (the default) to 0.05 — the rows' turn against the walls
+    # is a soft mode that its stop (moves below 1e-3 of an edge) leaves within ~0.04 degrees
+    # (docs/quadsmooth.md, "Walls")
+    for tag, dev_tol in (("-fixed", 0.01), ("", 0.05)):
+        qa = json.load(open(f"{T}/base{tag}.mq.json")); qb = json.load(open(f"{T}/{name}{tag}.mq.json"))
+        if qa["cells"] != qb["cells"] or qa["irregular_interior_share"] != qb["irregular_interior_share"]:
+            fail(f"{name}{tag} mesh: {qb['cells']} cells, irregular {qb['irregular_interior_share']}; "
+                 f"the original {qa['cells']}, {qa['irregular_interior_share']}")
+        for key, tol in (("quad_angle_deviation_mean_deg", dev_tol), ("scaled_jacobian_min", 1e-3)):
+            if abs(qa["metric"][key] - qb["metric"][key]) > tol:
+                fail(f"{name}{tag} mesh: metric {key} {qb['metric'][key]} against {qa['metric'][key]}")
     print(f"ok {name}: the same points, triangles and quads; mesh {qb['cells']} cells, "
           f"irregular {100 * qb['irregular_interior_share']:.2f} %, metric angle deviation "
           f"{qb['metric']['quad_angle_deviation_mean_deg']:.3f} (original {qa['metric']['quad_angle_deviation_mean_deg']:.3f})")

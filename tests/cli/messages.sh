@@ -110,5 +110,7 @@ rc=0; msg=$(recombine "$T/t.msh" -o "$T/qb.msh" --matching blossom --interior-bo
 [ ! -e "$T/qb.msh" ] || fail "recombine wrote an output after refusing --interior-bonus"
 rc=0; msg=$(quadsmooth "$T/q.msh" -o "$T/s.msh" --corner-metric cell 2>&1) || rc=$?
 [ $rc -eq 2 ] && echo "$msg" | grep -q -- "--corner-metric applies to the shape fit only" || fail "quadsmooth --corner-metric without --frame: exit $rc: $msg"
+rc=0; msg=$(quadsmooth "$T/q.msh" -o "$T/s.msh" --walls fixed 2>&1) || rc=$?
+[ $rc -eq 2 ] && echo "$msg" | grep -q -- "--walls applies to the shape fit only" || fail "quadsmooth --walls without --frame: exit $rc: $msg"
 
 echo "messages: ok"

@@ -93,6 +93,40 @@ req(ds < d0, "shape fit: metric angle deviation %g -> %g" % (d0, ds))
 req(r["quality"]["inverted"] == 0, "shape fit: inverted cells")
 print("ok: metric angle deviation %.2f -> %.2f (shape), %.2f (angle)" % (d0, ds, da))
 PY
+# --- the shape fit slides wall nodes along straight walls (docs/quadsmooth.md, "Walls"): on the
+# L-shape (axis-parallel walls, 6 groups) every boundary edge keeps its wall's coordinate bit for
+# bit, the corners and the groups' ends stay, some wall nodes move; --walls fixed moves none
+quadsmooth -q "$IN" --frame "$T/frame.msh" --walls fixed -o "$T/ff.msh"
+python3 - "$SRC/tests/cli" "$IN" "$T/fs.msh" "$T/fs.json" "$T/ff.msh" "$T/ff.json" <<'PY'
+import json, sys
+sys.path.insert(0, sys.argv[1])
+from golden_compare import read_msh
+m0, ms, mf = (read_msh(f) for f in (sys.argv[2], sys.argv[3], sys.argv[5]))
+rs, rf = json.load(open(sys.argv[4])), json.load(open(sys.argv[6]))
+def req(c, m):
+    if not c: sys.exit("FAIL: " + m)
+req(rs["options"]["walls"] == "slide" and rf["options"]["walls"] == "fixed", "options.walls: %s, %s" % (rs["options"]["walls"], rf["options"]["walls"]))
+req(rs["sliding_wall_nodes"] > 0 and rf["sliding_wall_nodes"] == 0, "sliding_wall_nodes %d, %d" % (rs["sliding_wall_nodes"], rf["sliding_wall_nodes"]))
+x0, xs, xf = (m["nodes"] for m in (m0, ms, mf))
+edges = m0["elements"][1]
+nbrs = {}  # boundary node -> its wall neighbours
+for a, b in edges:
+    nbrs.setdefault(a, []).append(b)
+    nbrs.setdefault(b, []).append(a)
+moved = 0
+for a, b in edges:
+    axis = 0 if x0[a][0] == x0[b][0] else 1  # the coordinate constant along the wall
+    req(x0[a][axis] == x0[b][axis], "the L-shape's wall edge %d-%d is not axis-parallel" % (a, b))
+    for v in (a, b):
+        req(xs[v][axis] == x0[v][axis], "slide: node %d left its wall: %r -> %r" % (v, x0[v], xs[v]))
+        req(xf[v] == x0[v], "--walls fixed: boundary node %d moved" % v)
+for v, w in nbrs.items():  # the L-shape's 6 corners (where its 6 groups meet) stay
+    corner = len(w) != 2 or (x0[w[0]][0] != x0[w[1]][0] and x0[w[0]][1] != x0[w[1]][1])
+    if corner: req(xs[v] == x0[v], "slide: corner %d moved" % v)
+    moved += xs[v] != x0[v]
+req(moved > 0, "slide: no wall node moved")
+print("ok: %d of %d wall nodes slid, every one on its wall; --walls fixed: none moved" % (moved, len(nbrs)))
+PY
 set +e
 quadsmooth -q "$IN" --method shape -o "$T/bad3.msh" 2>"$T/err3"; rc3=$?
 set -e

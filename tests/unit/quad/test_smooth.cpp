@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/LU>
@@ -16,6 +17,8 @@
 using namespace quadapt;
 
 namespace {
+double cross_z(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
 double angle_deviation(const Mesh& m) {  // mean |angle - 90| over quad corners
   double s = 0;
   int n = 0;
@@ -229,6 +232,12 @@ TEST_CASE("shape_smooth: in a constant metric T it is the smoothing of the mesh 
     ShapeSmoothOptions opt;
     opt.sweeps = 5;
     opt.target_edge = 0.4;
+    // the parts measured in physical space are not mapped (they see m, not T m): the physical
+    // guard and the revisit tolerance (a step against the node's physical edge lengths); both
+    // off here, so that every node (the wall nodes slide along the mapped walls too) takes the
+    // same steps
+    opt.min_sine_physical = -1;
+    opt.tolerance = 0;
     const auto sm = shape_smooth(m, opt, [&](const Vec2&) { return T; });
     const auto sp = shape_smooth(mapped, opt);
     CHECK(sm.moves_full == sp.moves_full);
@@ -241,18 +250,126 @@ TEST_CASE("shape_smooth: in a constant metric T it is the smoothing of the mesh 
 
 TEST_CASE("shape_smooth: the split of a random Delaunay triangulation stays valid and gets squarer") {
   Mesh tri = testing::delaunay_unit_square(8, 150, 5);
-  Mesh m = split_to_all_quads(tri);
-  Mesh before = m;
-  ShapeSmoothOptions opt;
-  opt.target_edge = std::sqrt(total_area(m) / m.num_cells());
-  const auto st = shape_smooth(m, opt);
-  CHECK(quality_summary(m).inverted == 0);
-  CHECK(st.moves_full + st.moves_reduced > 0);
-  CHECK(angle_deviation(m) < angle_deviation(before));
+  const Mesh before = split_to_all_quads(tri);
   const auto fixed = boundary_node_flags(before);
-  for (int v = 0; v < m.num_nodes(); ++v)
-    if (fixed[v]) CHECK(m.nodes[v] == before.nodes[v]);
-  CHECK(total_area(m) == doctest::Approx(total_area(before)).epsilon(1e-12));
+  for (const bool slide : {false, true}) {
+    CAPTURE(slide);
+    Mesh m = before;
+    ShapeSmoothOptions opt;
+    opt.target_edge = std::sqrt(total_area(m) / m.num_cells());
+    opt.slide_walls = slide;
+    const auto st = shape_smooth(m, opt);
+    CHECK(quality_summary(m).inverted == 0);
+    CHECK(st.moves_full + st.moves_reduced > 0);
+    CHECK(angle_deviation(m) < angle_deviation(before));
+    // fixed walls: every boundary node stays; sliding: the 4 corners stay, the others (4 x 15:
+    // 8 segments per side, split in two) stay on their side of the square, bit for bit
+    CHECK(st.sliding_nodes == (slide ? 60 : 0));
+    int moved = 0;
+    for (int v = 0; v < m.num_nodes(); ++v) {
+      if (!fixed[v]) continue;
+      const Vec2 &a = before.nodes[v], &b = m.nodes[v];
+      if (!slide || ((a.x() == 0 || a.x() == 1) && (a.y() == 0 || a.y() == 1))) {
+        CHECK(b == a);
+        continue;
+      }
+      moved += b != a;
+      if (a.x() == 0 || a.x() == 1) CHECK(b.x() == a.x());
+      if (a.y() == 0 || a.y() == 1) CHECK(b.y() == a.y());
+    }
+    if (slide) CHECK(moved > 30);
+    CHECK(total_area(m) == doctest::Approx(total_area(before)).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("wall_slides: straight-wall nodes, not corners, group ends, hanging nodes or curved walls") {
+  // 4 x 3 grid: 3 + 2 + 3 + 2 wall nodes between the corners
+  Mesh m = make_structured_quads(4, 3);
+  auto nodes = [](const Mesh& mesh) {
+    std::vector<int> v;
+    for (const WallSlide& w : wall_slides(mesh)) v.push_back(w.node);
+    return v;
+  };
+  CHECK(nodes(m).size() == 10);
+  for (const WallSlide& w : wall_slides(m)) {  // a, b: the node's wall neighbours, on its line
+    CHECK((m.nodes[w.a] - m.nodes[w.node]).norm() == doctest::Approx((m.nodes[w.b] - m.nodes[w.node]).norm()));
+    CHECK(std::abs(cross_z(m.nodes[w.a] - m.nodes[w.node], m.nodes[w.b] - m.nodes[w.node])) < 1e-15);
+  }
+  // the bottom wall's middle node (2, 0) becomes the end of a group: it stays
+  Mesh g = m;
+  g.groups.push_back({6, "inflow"});
+  g.boundary[2].group = g.boundary[3].group = 4;  // edges (2,0)-(3,0), (3,0)-(4,0)
+  CHECK(nodes(g).size() == 9);
+  for (int v : nodes(g)) CHECK(v != 2);
+  // a wall node off its neighbours' line (a polyline of a curved wall): it stays, and so does
+  // its neighbour 2 (now off the line of 1 and 3)
+  Mesh c = m;
+  c.nodes[1].y() = -1e-6;
+  CHECK(nodes(c).size() == 8);
+  for (int v : nodes(c)) CHECK((v != 1 && v != 2));
+  // no boundary listed: the free edges alone
+  Mesh f = m;
+  f.boundary.clear();
+  CHECK(nodes(f) == nodes(m));
+  // a hanging node: (1, 0.5) halves the big cell's edge (1,0)-(1,1)
+  Mesh h;
+  h.nodes = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {2, 0}, {2, 0.5}, {2, 1}, {1, 0.5}};
+  Cell q;
+  q.nv = 4;
+  q.v = {0, 1, 2, 3};
+  h.cells.push_back(q);
+  q.v = {1, 4, 5, 7};
+  h.cells.push_back(q);
+  q.v = {7, 5, 6, 2};
+  h.cells.push_back(q);
+  const auto hv = nodes(h);
+  CHECK(std::find(hv.begin(), hv.end(), 7) == hv.end());
+  CHECK(std::find(hv.begin(), hv.end(), 5) != hv.end());  // the right wall's middle node slides
+}
+
+TEST_CASE("shape_smooth: wall nodes displaced along their walls slide back to the metric's grid") {
+  // The grid of the metric's unit squares (as above, turned by 30 degrees in the metric), its
+  // interior nodes perturbed and its wall nodes moved along their walls by up to 30 % of a cell.
+  // With sliding walls the fit restores the grid; with fixed walls it cannot (the rows must end
+  // where the wall nodes are).
+  const double a = M_PI / 6;
+  Mat2 R;
+  R << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+  const Mat2 T = R * Eigen::Vector2d(8, 12).asDiagonal();
+  const Mesh grid = make_structured_quads(8, 12);
+  const auto fixed = boundary_node_flags(grid);
+  unsigned s = 7;
+  auto rnd = [&]() { s = s * 1103515245u + 12345u; return ((s >> 8) & 0xffff) / 65535.0 - 0.5; };
+  Mesh pert = grid;
+  for (int v = 0; v < pert.num_nodes(); ++v) {
+    Vec2& x = pert.nodes[v];
+    const bool wx = x.x() == 0 || x.x() == 1, wy = x.y() == 0 || x.y() == 1;
+    if (!fixed[v]) x += Vec2(0.6 * rnd() / 8, 0.6 * rnd() / 12);
+    else if (wx && !wy) x.y() += 0.6 * rnd() / 12;  // left / right wall
+    else if (wy && !wx) x.x() += 0.6 * rnd() / 8;   // bottom / top wall
+  }
+  double worst_by[2];
+  for (const bool slide : {false, true}) {
+    Mesh m = pert;
+    ShapeSmoothOptions opt;
+    opt.sweeps = 4000;
+    opt.tolerance = 1e-12;
+    opt.slide_walls = slide;
+    const auto st = shape_smooth(m, opt, [&](const Vec2&) { return T; });
+    double worst = 0;
+    for (int v = 0; v < m.num_nodes(); ++v) worst = std::max(worst, (T * (m.nodes[v] - grid.nodes[v])).norm());
+    MESSAGE("slide " << slide << ": sweeps " << st.sweeps << ", wall nodes sliding " << st.sliding_nodes
+                     << ", worst metric distance to the grid " << worst);
+    CHECK(quality_summary(m).inverted == 0);
+    for (int v = 0; v < m.num_nodes(); ++v) {  // walls: on their side of the square, bit for bit
+      const Vec2 &g = grid.nodes[v], &x = m.nodes[v];
+      if (g.x() == 0 || g.x() == 1) CHECK(x.x() == g.x());
+      if (g.y() == 0 || g.y() == 1) CHECK(x.y() == g.y());
+    }
+    worst_by[slide] = worst;
+  }
+  CHECK(worst_by[1] < 1e-6);
+  CHECK(worst_by[0] > 0.05);
 }
 
 TEST_CASE("shape_smooth: one node's step minimises the corner fit with every corner in its own node's (or its cell's) metric") {
@@ -283,6 +400,7 @@ TEST_CASE("shape_smooth: one node's step minimises the corner fit with every cor
     opt.size_min = 0.9;
     opt.size_max = 1.1;
     opt.cell_metric = cell_metric;
+    opt.slide_walls = false;  // the interior node alone (the wall nodes' step: the test below)
     // expected: normal equations of sum |T_j (x - x_ref) - b|^2
     Mat2 A = Mat2::Zero();
     Vec2 rhs = Vec2::Zero();
