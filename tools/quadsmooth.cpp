@@ -17,7 +17,7 @@
 
 int main(int argc, char** argv) {
   using namespace quadapt;
-  Tool tool("quadsmooth", "Angle-based smoothing of interior nodes (Zhou & Shimada), boundary fixed",
+  Tool tool("quadsmooth", "Smoothing of interior nodes: angle-based (Zhou & Shimada) or a fit to the frame's squares (wall nodes slide along straight walls)",
             "Moves each interior node to the average of its positions that would make the segment "
             "to each edge neighbour bisect the angle between the two cells at that neighbour "
             "(Zhou & Shimada 2000, the smoothing of thesis §4.6). A move that would invert a cell or "
