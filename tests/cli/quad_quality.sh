@@ -10,6 +10,9 @@
 #    row; with the thesis's Euclidean length, --boundary-norm 2, more: 3.2 % before the interior bonus);
 #  - a 5:1 frame at 45°: irregular interior vertices <= 3 %, because recombine's matching leaves
 #    the lattice's lone triangles at the walls (--interior-bonus, default 0.1; with 0: 3.9 %);
+#  - the same 5:1 frame at 30°: mean metric angle deviation <= 8 °, because quadsmooth slides the
+#    wall nodes along the walls (--walls slide, the default: 4.1°; with --walls fixed the lattice
+#    stays sheared by the walls' angle, 6.7°; the check is that fixed walls are worse by 1°);
 #  - the curved band (stretch 10 on a quarter circle): metric corners within 90 +- 10° >= 0.6,
 #    edges in range >= 0.8, count within 5 %, valid.
 set -euo pipefail
@@ -35,6 +38,8 @@ chain "$T/iso30.msh" iso30-frame --orientation frame
 python3 "$HERE/lpcvt_frame.py" "$T/a30s5.msh" --n 16 --h1 0.0353553391 --h2 0.0070710678 --theta 0.5235987756
 chain "$T/a30s5.msh" a30s5
 chain "$T/a30s5.msh" a30s5-l2 --boundary-norm 2
+quadsmooth -q "$T/a30s5-quad.msh" --frame "$T/a30s5.msh" --walls fixed -o "$T/a30s5-fixed-mesh.msh"
+meshquality "$T/a30s5-fixed-mesh.msh" --frame "$T/a30s5.msh" > "$T/a30s5-fixed.mq.json"
 python3 "$HERE/lpcvt_frame.py" "$T/a45s5.msh" --n 16 --h1 0.0353553391 --h2 0.0070710678 --theta 0.7853981633974483
 chain "$T/a45s5.msh" a45s5
 RECOMBINE="--interior-bonus 0" chain "$T/a45s5.msh" a45s5-nobonus
@@ -57,6 +62,10 @@ req(d["irregular_interior_share"] <= 0.03, "30°, 5:1: %.1f %% irregular (> 3 %%
 req(e["irregular_interior_share"] > d["irregular_interior_share"],
     "30°, 5:1: --boundary-norm 2 no worse than the default (%.3f vs %.3f): the test lost its point"
     % (e["irregular_interior_share"], d["irregular_interior_share"]))
+dd, df = d["metric"]["quad_angle_deviation_mean_deg"], J("a30s5-fixed")["metric"]["quad_angle_deviation_mean_deg"]
+req(dd <= 8, "30°, 5:1: mean metric angle deviation %.2f° (> 8°)" % dd)
+req(df > dd + 1, "30°, 5:1: --walls fixed not worse by 1° than sliding walls (%.2f° vs %.2f°): the test lost its point" % (df, dd))
+print("ok: 30°/5:1 mean metric angle deviation %.2f° (fixed walls: %.2f°)" % (dd, df))
 f, g = J("a45s5"), J("a45s5-nobonus")
 req(f["irregular_interior_share"] <= 0.03, "45°, 5:1: %.1f %% irregular (> 3 %%)" % (100 * f["irregular_interior_share"]))
 req(g["irregular_interior_share"] > f["irregular_interior_share"],
