@@ -2,6 +2,8 @@
 // phase, the lattice translated by it, and the auto rule.
 #include <doctest/doctest.h>
 
+#include <omp.h>
+
 #include <cmath>
 #include <set>
 
@@ -97,4 +99,29 @@ TEST_CASE("phases: auto runs kAutoPhases phases up to kAutoPhasePoints points, o
   CHECK(auto_phases(small) == kAutoPhases);
   CHECK(auto_phases(small.scaled(std::sqrt(kAutoPhasePoints / 400) * 1.01)) == 1);
   CHECK(auto_phases(small.scaled(std::sqrt(kAutoPhasePoints / 400) * 0.99)) == kAutoPhases);
+}
+
+TEST_CASE("phases: run two at a time on two threads, the caller's thread count is kept, the same run as on one") {
+  // run_phases sets one thread inside its parallel region (each phase's own regions): that
+  // setting belongs to the region's tasks and must not leak to the caller; the kept run must not
+  // depend on the thread count
+  Mesh m = quadapt::make_structured_quads(8, 8, 0, 1, 0, 1);
+  set_frame(m, 0.06, 0.015, 45 * kPi / 180);  // walls oblique to the lattice: the phases differ
+  const Background bg = Background::from_frame(m, 1.0, "test");
+  LpcvtOptions o = LpcvtOptions::for_frame();
+  const int caller = omp_get_max_threads();
+  omp_set_num_threads(2);
+  const PhaseRuns two = run_phases(bg, o, 3);
+  CHECK(omp_get_max_threads() == 2);
+  omp_set_num_threads(1);
+  const PhaseRuns one = run_phases(bg, o, 3);
+  CHECK(omp_get_max_threads() == 1);
+  omp_set_num_threads(caller);
+  CHECK(two.kept == one.kept);
+  REQUIRE(two.best.sites.size() == one.best.sites.size());
+  CHECK(two.best.sites == one.best.sites);
+  REQUIRE(two.runs.size() == one.runs.size());
+  for (size_t k = 0; k < two.runs.size(); ++k)
+    CHECK(two.runs[k].value("irregular", -1) == one.runs[k].value("irregular", -1));
+  MESSAGE("kept phase " << one.kept << " of 3; irregular counts " << one.runs.dump());
 }
