@@ -4,14 +4,14 @@
 
   metric_picture.py MESH.msh OUT.png --angle DEG --stretch S [--title T] [--vmax 20]
 
-The frame is orientation.py's: half-axes h sqrt(S) x h / sqrt(S), h = sqrt(0.05 * 0.005), long axis
-at DEG; M = diag(1/h1, 1/h2) R(-DEG) maps the unit square to a parallelogram on which the frame's
+The frame is orientation.py's (frame_metric): half-axes h sqrt(S) x h / sqrt(S), h = sqrt(0.05 *
+0.005), long axis at DEG; M = diag(1/h1, 1/h2) R(-DEG) maps the unit square to a parallelogram on which the frame's
 target cells are squares of side 2 (meshquality's convention: a target edge has |M e| / 2 = 1).
 """
 import argparse, math, os, sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "cli"))
-from golden_compare import read_msh  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from orientation import frame_metric, read_msh  # noqa: E402
 
 
 def main():
@@ -26,9 +26,7 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.collections import PolyCollection
-    h = math.sqrt(0.05 * 0.005)
-    h1, h2, t = h * math.sqrt(a.stretch), h / math.sqrt(a.stretch), math.radians(a.angle)
-    M = [[math.cos(t) / h1, math.sin(t) / h1], [-math.sin(t) / h2, math.cos(t) / h2]]
+    M = frame_metric(a.angle, a.stretch)[3]
     m = read_msh(a.mesh)
     x = [(M[0][0] * p[0] + M[0][1] * p[1], M[1][0] * p[0] + M[1][1] * p[1]) for p in m["nodes"]]
     polys, dev = [], []

@@ -56,9 +56,18 @@ def min_sj_from_corners(path, M, distances=(0, 2, 4)):
     return best
 
 
-def corner_bound(h1, h2, a):
-    c, s = math.cos(a), math.sin(a)
-    M = [[c / h1, s / h1], [-s / h2, c / h2]]
+def frame_metric(a_deg, s):
+    """The constant frame of (angle a_deg, stretch s): its half-axes h1 = h sqrt(s), h2 = h / sqrt(s)
+    (h = sqrt(0.05 * 0.005): 1000 target cells on the unit square), the angle in radians and
+    M = diag(1/h1, 1/h2) R(-a) (2x2 rows): (h1, h2, a, M)."""
+    h = math.sqrt(0.05 * 0.005)
+    h1, h2, a = h * math.sqrt(s), h / math.sqrt(s), math.radians(a_deg)
+    c, sn = math.cos(a), math.sin(a)
+    return h1, h2, a, [[c / h1, sn / h1], [-sn / h2, c / h2]]
+
+
+def corner_bound(M):
+    """sin of the unit square's smallest corner angle in the constant metric M."""
     ex = (M[0][0], M[1][0]); ey = (M[0][1], M[1][1])
     cosang = abs(ex[0] * ey[0] + ex[1] * ey[1]) / math.hypot(*ex) / math.hypot(*ey)
     ang = math.acos(min(1.0, cosang))
@@ -75,9 +84,7 @@ def run(cmd):
 def make_frame(out, a_deg, s, seed_cell=0):
     """The constant frame of (angle a_deg, stretch s) in OUT, seed cell made finer when given:
     (path, tag, h1, h2, angle in radians)."""
-    h = math.sqrt(0.05 * 0.005)
-    h1, h2 = h * math.sqrt(s), h / math.sqrt(s)
-    a = math.radians(a_deg)
+    h1, h2, a, _ = frame_metric(a_deg, s)
     tag = f"a{a_deg:g}-s{s:g}" + (f"-c{seed_cell}" if seed_cell else "")
     f = os.path.join(out, f"frame-{tag}.msh")
     run(["/usr/bin/python3", FRAME_PY, f, "--n", "16", "--h1", repr(h1), "--h2", repr(h2), "--theta", repr(a)]
@@ -87,6 +94,7 @@ def make_frame(out, a_deg, s, seed_cell=0):
 
 def one(binp, out, a_deg, s, bamg, seed_cell=0):
     f, tag, h1, h2, a = make_frame(out, a_deg, s, seed_cell)
+    M = frame_metric(a_deg, s)[3]
     rows = []
     paths = ["lpcvt"] + (["bamgquad"] if bamg and not seed_cell else [])
     for path in paths:
@@ -105,9 +113,7 @@ def one(binp, out, a_deg, s, bamg, seed_cell=0):
                          target=d["frame"]["continuous_complexity"],
                          dev=me["quad_angle_deviation_mean_deg"], min_sj=me["scaled_jacobian_min"],
                          in_band=me["edge_length"]["share_in_range"], irregular=d["irregular_interior_share"],
-                         bound=corner_bound(h1, h2, a),
-                         min_sj_beyond=min_sj_from_corners(m, [[math.cos(a) / h1, math.sin(a) / h1],
-                                                               [-math.sin(a) / h2, math.cos(a) / h2]])))
+                         bound=corner_bound(M), min_sj_beyond=min_sj_from_corners(m, M)))
         # the same definition as meshquality's: over all quads the same minimum
         assert abs(rows[-1]["min_sj_beyond"][0] - rows[-1]["min_sj"]) < 1e-9, (tag, path, rows[-1])
     return rows
