@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
             "cell; docs/quadsmooth.md); its sweeps go colour by colour (no two nodes of a colour "
             "share a cell) and move a colour's nodes in parallel, so the mesh is the same for any "
             "--threads. "
-            "Report: sweeps, moves accepted/reduced/rejected, quality before/after.");
+            "Report: sweeps and the rule that stopped them (stop: tolerance or the sweeps cap), moves accepted/reduced/rejected, quality before/after.");
   std::string in, out, frame_path, method;
   SmoothOptions opt;
   ShapeSmoothOptions shape;
@@ -133,13 +133,16 @@ int main(int argc, char** argv) {
     rep["interior_nodes"] = st.interior_nodes;
     if (method == "shape") rep["sliding_wall_nodes"] = st.sliding_nodes;
     rep["sweeps"] = st.sweeps;
+    // which rule ended the sweeps: the tolerance (converged) or the sweeps cap (docs/quadsmooth.md,
+    // "How far the sweeps converge": the shape fit on large meshes always stops on the cap)
+    rep["stop"] = st.converged ? "tolerance" : "sweeps";
     rep["moves_full"] = st.moves_full;
     rep["moves_reduced"] = st.moves_reduced;
     rep["moves_rejected"] = st.moves_rejected;
     rep["max_displacement"] = st.max_displacement;
     rep["quality_before"] = to_json(before);
     rep["quality"] = to_json(after);
-    tool.log(std::to_string(st.sweeps) + " sweeps over " + std::to_string(st.interior_nodes) +
+    tool.log(std::to_string(st.sweeps) + (st.converged ? " sweeps (converged)" : " sweeps (the cap; not converged to the tolerance)") + " over " + std::to_string(st.interior_nodes) +
              " interior nodes" + (st.sliding_nodes ? " and " + std::to_string(st.sliding_nodes) + " wall nodes" : "") +
              "; min angle " + sci(before.min_angle_deg) + " -> " +
              sci(after.min_angle_deg) + " deg, mean cell min angle " +

@@ -257,7 +257,10 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt, const NodeMetric& me
       max_rel = std::max(max_rel, d / size);
     }
     ++st.sweeps;
-    if (max_rel <= opt.tolerance) break;
+    if (max_rel <= opt.tolerance) {
+      st.converged = true;
+      break;
+    }
   }
   st.min_angle_after = quality_summary(m).min_angle_deg;
   return st;
@@ -412,7 +415,10 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
       }
     }
     ++st.sweeps;
-    if (!any) break;
+    if (!any) {
+      st.converged = true;
+      break;
+    }
     active.swap(next);
     std::fill(next.begin(), next.end(), 0);
   }

@@ -48,6 +48,7 @@ struct SmoothOptions {
 
 struct SmoothStats {
   int sweeps = 0;             ///< passes done
+  bool converged = false;     ///< stopped on the tolerance (no node moved more than it), not on the sweeps cap
   int interior_nodes = 0;     ///< nodes allowed to move
   long moves_full = 0;        ///< accepted moves at the full step
   long moves_reduced = 0;     ///< accepted after halving

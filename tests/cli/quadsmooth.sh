@@ -127,6 +127,19 @@ for v, w in nbrs.items():  # the L-shape's 6 corners (where its 6 groups meet) s
 req(moved > 0, "slide: no wall node moved")
 print("ok: %d of %d wall nodes slid, every one on its wall; --walls fixed: none moved" % (moved, len(nbrs)))
 PY
+# --- the report says which rule ended the sweeps: the cap ("sweeps": --sweeps 2 with the default
+# tolerance) or the tolerance ("tolerance": 10 edge lengths, met by the first sweep)
+quadsmooth -q "$IN" --frame "$T/frame.msh" --sweeps 2 -o "$T/cap.msh"
+quadsmooth -q "$IN" --frame "$T/frame.msh" --sweeps 5 --tolerance 10 -o "$T/tol.msh"
+python3 - "$T/cap.json" "$T/tol.json" <<'PY'
+import json, sys
+cap, tol = (json.load(open(f)) for f in sys.argv[1:])
+def req(c, m):
+    if not c: sys.exit("FAIL: " + m)
+req(cap["sweeps"] == 2 and cap["stop"] == "sweeps", "--sweeps 2: %s sweeps, stop %s" % (cap["sweeps"], cap["stop"]))
+req(tol["sweeps"] == 1 and tol["stop"] == "tolerance", "--tolerance 10: %s sweeps, stop %s" % (tol["sweeps"], tol["stop"]))
+print("ok: stop 'sweeps' after the cap of 2, 'tolerance' after 1 sweep")
+PY
 set +e
 quadsmooth -q "$IN" --method shape -o "$T/bad3.msh" 2>"$T/err3"; rc3=$?
 set -e
