@@ -14,6 +14,7 @@ docs/studies.md. Python 3 standard library only.
 """
 import argparse
 import csv
+import itertools
 import json
 import math
 import os
@@ -68,6 +69,29 @@ def interp_loglog(points, x):
     slope = (math.log(y1) - math.log(y0)) / (math.log(x1) - math.log(x0))
     ref = (x1, y1) if x > x1 else (x0, y0)
     return math.exp(math.log(ref[1]) + slope * (lx - math.log(ref[0]))), "extrap."
+
+
+def mann_whitney_p(a, b):
+    """Two-sided exact p-value of the rank-sum test (no ties assumed; ties count half): the share of
+    all splits of the pooled values into groups of len(a) and len(b) whose U is at least as far
+    from its mean as the observed one."""
+    def u_stat(x, y):
+        return sum(1.0 if xi > yj else 0.5 if xi == yj else 0.0 for xi in x for yj in y)
+    pooled, na = list(a) + list(b), len(a)
+    mean = na * len(b) / 2
+    d_obs = abs(u_stat(a, b) - mean)
+    hits = total = 0
+    for idx in itertools.combinations(range(len(pooled)), na):
+        chosen = set(idx)
+        x = [pooled[i] for i in idx]
+        y = [pooled[i] for i in range(len(pooled)) if i not in chosen]
+        total += 1
+        hits += abs(u_stat(x, y) - mean) >= d_obs - 1e-12
+    return hits / total
+
+
+def geomean(v):
+    return math.exp(sum(math.log(x) for x in v) / len(v))
 
 
 def e(v, digits=2):

@@ -10,7 +10,10 @@ seed runs of `make -f Makefile.cases seeds` exist (RUNS/STUDY/pP-lpcvt-seedS), t
 figure is the median over pP-lpcvt and those runs (the goal-oriented rows); likewise the BAMG
 figure over pP-bamg and the runs of `make -f Makefile.cases bamg-seeds` (RUNS/STUDY/pP-bamg-seedS,
 other start meshes), when they exist — then the count against BAMG's first run alone is printed
-too. Prints a markdown table and the counts.
+too. Prints a markdown table and the counts; then, for the rows with at least three runs of both
+loops, how far apart the two samples are: the ratio of their geometric means and the two-sided
+exact Mann-Whitney (Wilcoxon rank-sum) p-value of "the L_p-CVT errors and the BAMG errors come
+from the same distribution" (small p: the difference is not the runs' noise).
 """
 import csv
 import json
@@ -19,7 +22,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare import interp_loglog  # noqa: E402  (the study reports' interpolation)
+from compare import geomean, interp_loglog, mann_whitney_p  # noqa: E402  (the study reports' interpolation)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 if sys.argv[1:] in (["-h"], ["--help"]):
@@ -59,7 +62,7 @@ def runs_at(study, p, method, col, dofs):
                       if d.startswith(f"p{p}-{method}-seed") and os.path.exists(os.path.join(RUNS, study, d, "loop.done"))]
     m = median(runs)
     label = f"{m:.3g}" + (f" (median of {len(runs)}: " + ", ".join(f"{v:.2g}" for v in runs) + ")" if len(runs) > 1 else "")
-    return m, label, first, len(runs)
+    return m, label, first, runs
 
 
 def at(c, dofs):
@@ -71,14 +74,16 @@ def at(c, dofs):
 print("| study | p | thesis L_p-CVT DOFs | our L_p-CVT | our BAMG | L_p-CVT / BAMG | thesis best (method) | L_p-CVT / thesis best |")
 print("|---|---|---|---|---|---|---|---|")
 n = below_bamg = below_bamg_first = below_thesis = bamg_medians = 0
+spread = []
 for study, key, col in STUDIES:
     for p in (1, 2, 3):
         rows = [r for r in THESIS[key]["rows"] if r["p"] == p]
         best = min(rows, key=lambda r: r["error"])
         dofs = next(r["dofs"] for r in rows if r["method"] == "lpcvt")
         try:
-            el, label, _, _ = runs_at(study, p, "lpcvt", col, dofs)
-            eb, blabel, eb1, nb = runs_at(study, p, "bamg", col, dofs)
+            el, label, _, lruns = runs_at(study, p, "lpcvt", col, dofs)
+            eb, blabel, eb1, bruns = runs_at(study, p, "bamg", col, dofs)
+            nb = len(bruns)
         except OSError as e:
             print(f"| {study} | {p} | missing run: {e.filename} | | | | | |")
             continue
@@ -88,8 +93,16 @@ for study, key, col in STUDIES:
         bamg_medians += nb > 1
         below_thesis += el < best["error"]
         print(f"| {study} | {p} | {dofs:.3g} | {label} | {blabel} | {el / eb:.2f} | {best['error']:.3g} ({best['method']}) | {el / best['error']:.2f} |")
+        if len(lruns) >= 3 and len(bruns) >= 3 and all(math.isfinite(v) for v in lruns + bruns):
+            spread.append((study, p, len(lruns), len(bruns), geomean(lruns) / geomean(bruns), mann_whitney_p(lruns, bruns)))
 print()
 print(f"L_p-CVT at or below our BAMG loop: {below_bamg} of {n}; below the thesis's best: {below_thesis} of {n}")
 if bamg_medians:
     print(f"(against BAMG's first run alone, no median, in the {bamg_medians} rows with BAMG seed runs: "
           f"at or below in {below_bamg_first} of {n})")
+if spread:
+    print()
+    print("| study | p | runs L_p-CVT / BAMG | geometric mean L_p-CVT / BAMG | Mann-Whitney p (two-sided, exact) |")
+    print("|---|---|---|---|---|")
+    for study, p, nl, nb, g, pv in spread:
+        print(f"| {study} | {p} | {nl} / {nb} | {g:.2f} | {pv:.2f} |")

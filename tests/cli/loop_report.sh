@@ -58,6 +58,18 @@ assert interp_loglog(pts, 1e5) == (None, "not reached")
 y, flag = interp_loglog(pts, 3e3)
 assert flag == "" and abs(y / (1e-2 * 3 ** -2) - 1) < 1e-12
 PYEOF
+# the rank-sum test lpcvt-vs.py prints for the goal rows (compare.py): exact two-sided p-values
+# of small samples (separated 5 + 5: 2 / C(10, 5); separated 4 + 3: 2 / C(7, 3); interleaved 3 + 3:
+# 14 of the 20 splits as far from the mean), the geometric mean
+"$PY" - "$SRC/scripts/loop" <<'PYEOF'
+import sys
+sys.path.insert(0, sys.argv[1])
+from compare import geomean, mann_whitney_p
+assert abs(mann_whitney_p([1, 2, 3, 4, 5], [6, 7, 8, 9, 10]) - 2 / 252) < 1e-15
+assert abs(mann_whitney_p([10, 20, 30, 40], [1, 2, 3]) - 2 / 35) < 1e-15
+assert abs(mann_whitney_p([1, 3, 5], [2, 4, 6]) - 0.7) < 1e-15
+assert abs(geomean([1e-9, 1e-11]) / 1e-10 - 1) < 1e-12
+PYEOF
 # lpcvt-vs.py's command line: --help is its usage (exit 0); an unknown option, an extra argument or
 # a missing RUNS directory is one line on stderr and exit 2
 "$PY" "$SRC/scripts/loop/lpcvt-vs.py" --help > "$T/vs-help" || fail "lpcvt-vs.py --help: exit $?"
