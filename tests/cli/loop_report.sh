@@ -69,6 +69,12 @@ assert abs(mann_whitney_p([1, 2, 3, 4, 5], [6, 7, 8, 9, 10]) - 2 / 252) < 1e-15
 assert abs(mann_whitney_p([10, 20, 30, 40], [1, 2, 3]) - 2 / 35) < 1e-15
 assert abs(mann_whitney_p([1, 3, 5], [2, 4, 6]) - 0.7) < 1e-15
 assert abs(geomean([1e-9, 1e-11]) / 1e-10 - 1) < 1e-12
+# 18 + 18 (too many splits to count): the normal approximation; separated samples give
+# |U - 162| = 162, sd = sqrt(18 * 18 * 37 / 12) = 31.61, p = erfc(161.5 / 31.61 / sqrt 2) = 3.2e-7
+import math
+p = mann_whitney_p(list(range(18)), list(range(100, 118)))
+assert abs(p / math.erfc(161.5 / math.sqrt(18 * 18 * 37 / 12) / math.sqrt(2)) - 1) < 1e-12 and p < 1e-6, p
+assert mann_whitney_p(list(range(0, 36, 2)), list(range(1, 37, 2))) > 0.5
 PYEOF
 # lpcvt-vs.py's command line: --help is its usage (exit 0); an unknown option, an extra argument or
 # a missing RUNS directory is one line on stderr and exit 2
