@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
     if (method == "shape") rep["sliding_wall_nodes"] = st.sliding_nodes;
     rep["sweeps"] = st.sweeps;
     // which rule ended the sweeps: the tolerance (converged) or the sweeps cap (docs/quadsmooth.md,
-    // "How far the sweeps converge": the shape fit on large meshes always stops on the cap)
+    // "How far the sweeps converge": the shape fit almost always stops on the cap)
     rep["stop"] = st.converged ? "tolerance" : "sweeps";
     rep["moves_full"] = st.moves_full;
     rep["moves_reduced"] = st.moves_reduced;
@@ -142,7 +142,9 @@ int main(int argc, char** argv) {
     rep["max_displacement"] = st.max_displacement;
     rep["quality_before"] = to_json(before);
     rep["quality"] = to_json(after);
-    tool.log(std::to_string(st.sweeps) + (st.converged ? " sweeps (converged)" : " sweeps (the cap; not converged to the tolerance)") + " over " + std::to_string(st.interior_nodes) +
+    tool.log(std::to_string(st.sweeps) +
+             (st.converged ? " sweeps (converged)" : " sweeps (the cap; not converged to the tolerance)") +
+             " over " + std::to_string(st.interior_nodes) +
              " interior nodes" + (st.sliding_nodes ? " and " + std::to_string(st.sliding_nodes) + " wall nodes" : "") +
              "; min angle " + sci(before.min_angle_deg) + " -> " +
              sci(after.min_angle_deg) + " deg, mean cell min angle " +
