@@ -8,6 +8,7 @@
 #include <Eigen/LU>
 
 #include "core/error.hpp"
+#include "mesh/boundary.hpp"
 #include "quad/mesh_utils.hpp"
 #include "quad/quality_summary.hpp"
 
@@ -84,10 +85,7 @@ struct Topology {
   std::vector<char> fixed;
   std::vector<std::vector<int>> node_cells, nbrs;
   std::unordered_map<std::uint64_t, EdgeCells> edges;
-  static std::uint64_t key(int a, int b) {
-    if (a > b) std::swap(a, b);
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-  }
+  static std::uint64_t key(int a, int b) { return edge_key(a, b); }
   const EdgeCells& edge(int a, int b) const { return edges.at(key(a, b)); }
 };
 
