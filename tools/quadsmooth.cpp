@@ -13,6 +13,7 @@
 #include "quad/report.hpp"
 #include "quad/smooth.hpp"
 #include "frame/frame.hpp"
+#include "lpcvt/fit_frame.hpp"
 #include "quality/mesh_quality.hpp"
 
 int main(int argc, char** argv) {
@@ -71,6 +72,21 @@ int main(int argc, char** argv) {
                  "instead of shearing the mesh; corners, ends of boundary groups and nodes of curved walls "
                  "stay) or every boundary node stays (fixed). docs/quadsmooth.md, \"Walls\"")
       ->capture_default_str()->check(CLI::IsMember({"slide", "fixed"}));
+  std::string fit = "raw";
+  lpcvt::FitFrameOptions fit_opt;
+  app.add_option("--fit-frame", fit,
+                 "Shape fit: the frame it aims at — raw (FRAME as read), meshed (the filtered frame lpcvt meshes, "
+                 "as lpcvt --write-frame) or capped (meshed, but never coarser than FRAME along any direction, "
+                 "rescaled to meshed's cell count). "
+                 "docs/quadsmooth.md, \"Which frame the fit aims at\"")
+      ->capture_default_str()->check(CLI::IsMember({"raw", "meshed", "capped"}));
+  app.add_option("--frame-smooth", fit_opt.smooth,
+                 "Shape fit, --fit-frame meshed/capped: log-Euclidean smoothing passes of the filter (lpcvt --smooth)")
+      ->capture_default_str()->check(CLI::Range(0, 1000));
+  app.add_option("--frame-gradation", fit_opt.gradation,
+                 "Shape fit, --fit-frame meshed/capped: size gradation of the filter, growth per unit metric "
+                 "length (lpcvt --gradation; 0 = none)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
   app.add_option("--frame", frame_path,
                  "Frame file (background mesh with the cell field Vinv): smooth in its metric space")
       ->check(CLI::ExistingFile);
@@ -90,9 +106,20 @@ int main(int argc, char** argv) {
     if (method != "shape" && tool.app().count("--walls"))
       throw InputError(in, "--walls applies to the shape fit only (--method shape with --frame)");
     shape.slide_walls = walls == "slide";
+    for (const char* o : {"--fit-frame", "--frame-smooth", "--frame-gradation"})
+      if (method != "shape" && tool.app().count(o))
+        throw InputError(in, std::string(o) + " applies to the shape fit only (--method shape with --frame)");
+    if (fit_opt.gradation != 0 && !(fit_opt.gradation > 1))
+      throw InputError(in, "--frame-gradation must be > 1 (or 0: none)");
+    fit_opt.mode = lpcvt::parse_fit_frame(fit, in);
     if (method == "shape") {
       tool.option("corner_metric", corner_metric);
       tool.option("walls", walls);
+      tool.option("fit_frame", fit);
+      if (fit_opt.mode != lpcvt::FitFrame::Raw) {
+        tool.option("frame_smooth", fit_opt.smooth);
+        tool.option("frame_gradation", fit_opt.gradation);
+      }
     }
     tool.option("method", method);
     tool.option("sweeps", method == "shape" ? shape.sweeps : opt.sweeps);
@@ -106,6 +133,18 @@ int main(int argc, char** argv) {
       auto ph = tool.phase("read");
       m = read_valid_msh(in);
       if (!frame_path.empty()) frame = read_frame(frame_path);
+    }
+    if (method == "shape" && fit_opt.mode != lpcvt::FitFrame::Raw) {
+      auto ph = tool.phase("fit_frame");
+      lpcvt::FitFrameReport fr;
+      frame = lpcvt::fit_frame(frame, fit_opt, &fr);
+      tool.report()["fit_frame"] = {{"mode", fit}, {"smoothed_cells", fr.smoothed_cells}, {"graded_cells", fr.graded_cells},
+                                    {"capped_cells", fr.capped_cells}, {"cap_rescale", fr.cap_rescale}};
+      tool.log(std::string("fit frame ") + fit + ": " + std::to_string(fr.smoothed_cells) + " cells smoothed, " +
+               std::to_string(fr.graded_cells) + " graded" +
+               (fit_opt.mode == lpcvt::FitFrame::Capped
+                    ? ", " + std::to_string(fr.capped_cells) + " capped at FRAME's size (rescale " + sci(fr.cap_rescale) + ")"
+                    : std::string()));
     }
     const QualitySummary before = quality_summary(m);
     if (before.inverted > 0)

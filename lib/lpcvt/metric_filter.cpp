@@ -178,4 +178,28 @@ FilterReport grade_metric(Background& bg, double beta) {
   return r;
 }
 
+FilterReport cap_metric(Background& bg, const std::vector<Mat2>& floor) {
+  FilterReport r;
+  if (bg.is_analytic()) throw InputError("", "metric capping needs a frame (piecewise-constant metric)");
+  const int n = bg.mesh().num_cells();
+  if (static_cast<int>(floor.size()) != n) throw NumericalError("cap_metric: one floor metric per background cell expected");
+  const double area = bg.metric_area();
+  r.max_ratio_before = max_neighbour_size_ratio(bg);
+  std::vector<Mat2> M(n);
+  for (int c = 0; c < n; ++c) {
+    const Mat2 M0 = bg.mesh_cell_metric(c);
+    const Sym A = M0.transpose() * M0;
+    const Sym I = intersect(A, floor[c].transpose() * floor[c]);
+    if ((I - A).norm() > 1e-12 * A.norm()) {
+      M[c] = frame_of(I, M0);
+      ++r.cells_changed;
+    } else {
+      M[c] = M0;
+    }
+  }
+  restore_area(bg, M, area, r);
+  r.max_ratio_after = max_neighbour_size_ratio(bg);
+  return r;
+}
+
 }  // namespace quadapt::lpcvt

@@ -44,6 +44,13 @@ FilterReport smooth_metric(Background& bg, int passes);
 /// Anisotropic gradation (above); growth beta > 1 per unit metric length.
 FilterReport grade_metric(Background& bg, double beta);
 
+/// The floor (fit_frame.hpp, "capped"): per background cell the metric intersection
+/// 𝓜_c ∩ 𝓕_c with 𝓕_c = F_cᵀ F_c (`floor`: one M per mesh cell, in the background's units), i.e.
+/// never coarser than F_c along any direction, then the uniform rescale to the metric area before.
+/// A cell whose metric already contains its floor keeps its frame bit for bit (before the rescale).
+/// Throws NumericalError when `floor` is not one matrix per mesh cell.
+FilterReport cap_metric(Background& bg, const std::vector<Mat2>& floor);
+
 /// Largest mean-size ratio between face-neighbouring background cells.
 double max_neighbour_size_ratio(const Background& bg);
 

@@ -39,7 +39,7 @@ MAX_ANISO=""  # size-solve --max-anisotropy; empty = its default (25)
 PHASES=""        # lpcvt --phases N (lattice phases tried; empty: lpcvt's default, auto)
 WALLS=""         # quadsmooth --walls slide|fixed (lpcvt path; empty: quadsmooth's default, slide)
 START_JITTER="0"  # > 0: the start mesh's interior nodes moved at random from SEED (meshconvert --jitter)
-FIT_FRAME="raw"   # lpcvt: quadsmooth fits size-solve's frame (raw) or the one lpcvt meshed (meshed: --write-frame)
+FIT_FRAME="raw"   # lpcvt: quadsmooth fits size-solve's frame (raw), the one lpcvt meshed (meshed: --write-frame) or that one never coarser than raw (capped: quadsmooth --fit-frame capped)
 while [ $# -gt 0 ]; do
   opt="$1"
   case "$opt" in
@@ -104,7 +104,7 @@ is_num "$START_JITTER" && "$PY" -c "import sys; sys.exit(0 if float('$START_JITT
 [ -n "$OUT" ] || die "OUT is not set (the run directory)"
 case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
-case "$FIT_FRAME" in raw|meshed) ;; *) die "FIT_FRAME='$FIT_FRAME': use raw (size-solve's frame) or meshed (the frame lpcvt meshed)" ;; esac
+case "$FIT_FRAME" in raw|meshed|capped) ;; *) die "FIT_FRAME='$FIT_FRAME': use raw (size-solve's frame), meshed (the frame lpcvt meshed) or capped (meshed, never coarser than raw)" ;; esac
 if [ -n "$GEOMETRY" ]; then  # the true geometry (docs/curved.md): meshes snapped to it, cells of order ORDER
   [ -f "$GEOMETRY" ] || die "GEOMETRY '$GEOMETRY': no such file"
   GEOMETRY="$(cd "$(dirname "$GEOMETRY")" && pwd)/$(basename "$GEOMETRY")"
@@ -379,7 +379,8 @@ while :; do
         # tri.msh (no node moves; docs/recombine.md)
         run_tool "$d" recombine "$d/quad.msh" "$d/tri.msh" -- recombine "$d/tri.msh" -o "$d/quad.msh"
         run_tool "$d" quadsmooth "$d/adapted.msh" "$d/quad.msh" "$fit" -- \
-          quadsmooth "$d/quad.msh" -o "$d/adapted.msh" --frame "$fit" ${WALLS:+--walls "$WALLS"}
+          quadsmooth "$d/quad.msh" -o "$d/adapted.msh" --frame "$fit" ${WALLS:+--walls "$WALLS"} \
+          $([ "$FIT_FRAME" != capped ] || echo --fit-frame capped)
       else
         run_tool "$d" bamgquad "$d/quad.msh" "$d/frame.msh" -- bamgquad "$d/frame.msh" -o "$d/quad.msh" ${geo[@]+"${geo[@]}"}
         if [ "$SMOOTH_BAMG" = yes ]; then

@@ -140,6 +140,39 @@ req(cap["sweeps"] == 2 and cap["stop"] == "sweeps", "--sweeps 2: %s sweeps, stop
 req(tol["sweeps"] == 1 and tol["stop"] == "tolerance", "--tolerance 10: %s sweeps, stop %s" % (tol["sweeps"], tol["stop"]))
 print("ok: stop 'sweeps' after the cap of 2, 'tolerance' after 1 sweep")
 PY
+# --- --fit-frame (docs/quadsmooth.md, "Which frame the fit aims at"): on a graded frame (a curved
+# band) raw is the default (the same bytes), meshed and capped aim at other frames (other meshes),
+# the report says which and what the filter changed; capped caps cells; no cell inverts
+python3 "$SRC/tests/cli/lpcvt_frame.py" "$T/band.msh" --n 12 --kind band --h1 0.05 --stretch 6 --band-radius 0.4 --band-width 0.08
+quadsmooth -q "$IN" --frame "$T/band.msh" -o "$T/b0.msh"
+for ff in raw meshed capped; do quadsmooth -q "$IN" --frame "$T/band.msh" --fit-frame $ff -o "$T/b$ff.msh"; done
+same_bytes() { cmp -s "$1" "$2" || fail "$1 and $2 differ"; }
+same_bytes "$T/b0.msh" "$T/braw.msh"
+! cmp -s "$T/braw.msh" "$T/bmeshed.msh" || fail "--fit-frame meshed: the same mesh as raw"
+! cmp -s "$T/bmeshed.msh" "$T/bcapped.msh" || fail "--fit-frame capped: the same mesh as meshed"
+python3 - "$T/b0.json" "$T/bmeshed.json" "$T/bcapped.json" <<'PY'
+import json, sys
+r0, rm, rc = (json.load(open(f)) for f in sys.argv[1:])
+def req(c, m):
+    if not c: sys.exit("FAIL: " + m)
+req(r0["options"]["fit_frame"] == "raw" and "fit_frame" not in r0, "default: options.fit_frame %s" % r0["options"].get("fit_frame"))
+req(rm["fit_frame"]["mode"] == "meshed" and rm["fit_frame"]["smoothed_cells"] > 0 and rm["fit_frame"]["capped_cells"] == 0,
+    "meshed: report %r" % rm["fit_frame"])
+req(rc["fit_frame"]["mode"] == "capped" and rc["fit_frame"]["capped_cells"] > 0 and rc["fit_frame"]["cap_rescale"] < 1,
+    "capped: report %r" % rc["fit_frame"])
+req(rm["options"]["frame_smooth"] == 4 and rm["options"]["frame_gradation"] == 2, "meshed: filter options %r" % rm["options"])
+for r in (r0, rm, rc):
+    req(r["quality"]["inverted"] == 0, "inverted cells with --fit-frame %s" % r["options"]["fit_frame"])
+print("ok: --fit-frame raw (default) / meshed / capped: %d cells smoothed, %d capped (rescale %.3f)" % (
+    rm["fit_frame"]["smoothed_cells"], rc["fit_frame"]["capped_cells"], rc["fit_frame"]["cap_rescale"]))
+PY
+set +e
+quadsmooth -q "$IN" --frame "$T/band.msh" --method angle --fit-frame capped -o "$T/bad4.msh" 2>"$T/err4"; rc4=$?
+quadsmooth -q "$IN" --frame "$T/band.msh" --fit-frame meshed --frame-gradation 0.5 -o "$T/bad5.msh" 2>"$T/err5"; rc5=$?
+set -e
+[ $rc4 = 2 ] && grep -q "shape fit only" "$T/err4" || fail "--fit-frame with --method angle: exit $rc4, $(cat "$T/err4")"
+[ $rc5 = 2 ] && grep -q "frame-gradation must be > 1" "$T/err5" || fail "--frame-gradation 0.5: exit $rc5, $(cat "$T/err5")"
+[ ! -e "$T/bad4.msh" ] && [ ! -e "$T/bad5.msh" ] || fail "output written on bad options"
 set +e
 quadsmooth -q "$IN" --method shape -o "$T/bad3.msh" 2>"$T/err3"; rc3=$?
 set -e
