@@ -46,6 +46,7 @@ Frame fit_frame(const Frame& raw, const FitFrameOptions& opt, FitFrameReport* re
   }
   if (report) *report = rep;
   Frame out = meshed_frame(bg);
+  out.source = raw.source;  // the convention the file was read in (M is quadapt's either way)
   return out;
 }
 
