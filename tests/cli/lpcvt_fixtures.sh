@@ -11,7 +11,7 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 for spec in ss15_fb_p1:1:3456 bl15_fb_p2:2:7776; do
   IFS=: read -r name p C <<< "$spec"
-  lpcvt "$D/input_${name}_3.msh" --complexity "$C" --degree "$p" -o "$T/$name-tri.msh" -q
+  lpcvt "$D/input_${name}_3.msh" --complexity "$C" --degree "$p" -o "$T/$name-tri.msh" -q --write-frame "$T/$name-frame.msh"
   recombine "$T/$name-tri.msh" -o "$T/$name-quad.msh" -q
   /usr/bin/python3 - "$T/$name-tri.json" "$T/$name-quad.json" "$p" "$C" <<'PY'
 import json, sys
@@ -46,6 +46,42 @@ raw, final = s["max_neighbour_size_ratio_before"], g["max_neighbour_size_ratio_a
 assert final <= raw + 1e-9, (raw, final)
 if "bl15" in sys.argv[1]:
     assert final < 0.5 * raw, (raw, final)
+PY
+  # The metric is M^T M (M = PHiLiP's Vinv as read, rows = the frame's inverse axes), not M M^T:
+  # where the solution is steep the frame's short axis (the direction of the largest eigenvalue of
+  # M^T M) lies along grad u. S-shock u = 0.75 tanh(4 sin(10y - 5) - 24x + 12): cells with
+  # sech^2 of the argument > 0.3; boundary layer (layers on x = 1 and y = 1, eps = 0.005): cells
+  # within 0.05 of one wall, grad u along its normal. Measured on the frame lpcvt meshed
+  # (--write-frame, after its filters), anisotropic cells (stretch >= 2): medians 1.6 deg (S-shock)
+  # and 0.6 deg (boundary layer) for M^T M against 32.7 and 90 deg for M M^T (on the raw files:
+  # 3.9 and 1.0 against 34 and 90). Fails if the frame is ever read transposed.
+  /usr/bin/python3 - "$T/$name-frame.msh" "$name" "$(dirname "$0")" <<'PY'
+import math, sys
+import numpy as np
+sys.path.insert(0, sys.argv[3])
+from golden_compare import read_msh
+m = read_msh(sys.argv[1]); V = m["views"]["Vinv"]["values"]; nodes = m["nodes"]
+mt, tm = [], []
+for (t, i), v in V.items():
+    M = np.array([[v[0], v[1]], [v[3], v[4]]])
+    x, y = np.array([nodes[n][:2] for n in m["elements"][t][i]]).mean(0)
+    if sys.argv[2].startswith("ss"):
+        if 1 / math.cosh(4 * math.sin(10 * y - 5) - 24 * x + 12) ** 2 <= 0.3:
+            continue
+        g = np.array([-24.0, 40 * math.cos(10 * y - 5)])
+    else:
+        if min(1 - x, 1 - y) > 0.05:
+            continue
+        g = np.array([1.0, 0.0]) if 1 - x < 1 - y else np.array([0.0, 1.0])
+    U, S, Vt = np.linalg.svd(M)
+    if S[0] / S[1] < 2:
+        continue
+    g /= np.linalg.norm(g)
+    mt.append(math.degrees(math.acos(min(1.0, abs(Vt[0] @ g)))))
+    tm.append(math.degrees(math.acos(min(1.0, abs(U[:, 0] @ g)))))
+a, b = float(np.median(mt)), float(np.median(tm))
+print(f"{sys.argv[2]}: {len(mt)} steep anisotropic cells: short axis off grad u by {a:.1f} deg (M^T M), {b:.1f} deg (M M^T)")
+assert len(mt) >= 50 and a < 10 and b > 25, (len(mt), a, b)
 PY
 done
 # No flag at all: a PHiLiP file states no size convention, so it is read with PHiLiP's full-edge
