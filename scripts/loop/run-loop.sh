@@ -4,8 +4,8 @@
 #   run-loop.sh --case CASE.json --mesh START.msh --p P --method lpcvt|bamg|fixed-fraction|uniform
 #               --mode feature|goal --steps N --growth G --out DIR
 #               [--maxdofs N] [--fraction F] [--ff-by FIELD] [--seed S] [--smooth-bamg yes|no]
-#               [--max-anisotropy A] [--start-jitter J] [--fit-frame raw|meshed] [--phases N]
-#               [--walls slide|fixed]
+#               [--max-anisotropy A] [--start-jitter J] [--fit-frame raw|meshed|capped] [--phases N]
+#               [--walls slide|fixed] [--r-max R] [--c-max C]
 #               [--pictures yes|no] [--window x0,x1,y0,y1] [--thesis-case KEY] [--check-only]
 #
 # Every input is checked, and every tool the method needs is looked up, BEFORE any work starts.
@@ -36,6 +36,8 @@ die() { echo "loop: error: $*" >&2; exit 2; }
 CASE="" MESH="" P="" METHOD="" MODE="" STEPS="6" GROWTH="1.5" OUT="" MAXDOFS="0" FRACTION="0.3" FF_BY=""
 SEED="1" JITTER="0" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0 GEOMETRY="" ORDER=""
 MAX_ANISO=""  # size-solve --max-anisotropy; empty = its default (25)
+R_MAX=""      # goal mode: size-solve --r-max, the largest refinement factor per step; empty = its default (20)
+C_MAX=""      # goal mode: size-solve --c-max, the largest coarsening factor per step; empty = its default (4)
 PHASES=""        # lpcvt --phases N (lattice phases tried; empty: lpcvt's default, auto)
 WALLS=""         # quadsmooth --walls slide|fixed (lpcvt path; empty: quadsmooth's default, slide)
 START_JITTER="0"  # > 0: the start mesh's interior nodes moved at random from SEED (meshconvert --jitter)
@@ -55,6 +57,7 @@ while [ $# -gt 0 ]; do
     --window) WINDOW="$val" ;; --thesis-case) THESIS_KEY="$val" ;;
     --geometry) GEOMETRY="$val" ;; --order) ORDER="$val" ;; --max-anisotropy) MAX_ANISO="$val" ;;
     --start-jitter) START_JITTER="$val" ;; --phases) PHASES="$val" ;; --walls) WALLS="$val" ;; --fit-frame) FIT_FRAME="$val" ;;
+    --r-max) R_MAX="$val" ;; --c-max) C_MAX="$val" ;;
     *) die "unknown option $opt (see docs/loop.md)" ;;
   esac
 done
@@ -95,6 +98,13 @@ is_uint "$SEED" || die "SEED='$SEED': must be a non-negative integer"
 is_num "$JITTER" || die "JITTER='$JITTER': must be a non-negative number (lpcvt --jitter, target edges)"
 [ -z "$MAX_ANISO" ] || { is_num "$MAX_ANISO" && "$PY" -c "import sys; sys.exit(0 if float('$MAX_ANISO') >= 1 else 1)"; } \
   || die "MAX_ANISOTROPY='$MAX_ANISO': must be a number >= 1 (size-solve --max-anisotropy, largest h1/h2)"
+for rc in "R_MAX:$R_MAX:refinement" "C_MAX:$C_MAX:coarsening"; do
+  IFS=: read -r rcn rcv rcw <<< "$rc"
+  [ -z "$rcv" ] || { is_num "$rcv" && "$PY" -c "import sys; sys.exit(0 if float('$rcv') > 1 else 1)"; } \
+    || die "$rcn='$rcv': must be a number > 1 (size-solve --$(echo "$rcn" | tr "A-Z_" "a-z-"): the largest $rcw factor of a cell's area per step)"
+done
+rcm=()  # goal mode only: R_MAX / C_MAX when set
+[ "$MODE" != goal ] || rcm=(${R_MAX:+r_max="$R_MAX"} ${C_MAX:+c_max="$C_MAX"})
 is_num "$START_JITTER" && "$PY" -c "import sys; sys.exit(0 if float('$START_JITTER') <= 0.45 else 1)" \
   || die "START_JITTER='$START_JITTER': must be a number in [0, 0.45] (meshconvert --jitter: the largest move over the shortest edge)"
 [ -z "$PHASES" ] || { is_uint "$PHASES" && [ "$PHASES" -le 16 ]; } \
@@ -181,7 +191,7 @@ wls=()  # likewise WALLS
 msg="$(ctl params "$OUT/loop.json" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
   method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" ${jit[@]+"${jit[@]}"} \
   smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} \
-  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} ${phs[@]+"${phs[@]}"} ${wls[@]+"${wls[@]}"} 2>&1)" || die "$msg"
+  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} ${phs[@]+"${phs[@]}"} ${wls[@]+"${wls[@]}"} ${rcm[@]+"${rcm[@]}"} 2>&1)" || die "$msg"
 
 name="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
 say() { echo "[$name] $*"; }
@@ -361,7 +371,8 @@ while :; do
       if [ "$MODE" = goal ]; then
         run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" "$CASE" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
         run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" "$d/dwr.msh" -- \
-          size-solve "$d/shape.msh" --growth "$GROWTH" --dwr "$d/dwr.msh" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} -o "$d/frame.msh"
+          size-solve "$d/shape.msh" --growth "$GROWTH" --dwr "$d/dwr.msh" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} \
+            ${R_MAX:+--r-max "$R_MAX"} ${C_MAX:+--c-max "$C_MAX"} -o "$d/frame.msh"
       else
         run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" -- \
           size-solve "$d/shape.msh" --growth "$GROWTH" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} -o "$d/frame.msh"

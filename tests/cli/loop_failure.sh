@@ -66,6 +66,9 @@ rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --fit-fra
 rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --walls loose --out run-bad > log4e 2>&1 || rc=$?
 [ $rc -eq 2 ] && grep -q "WALLS='loose': must be slide or fixed" log4e || fail "WALLS loose: exit $rc, $(cat log4e)"
 [ ! -e run-bad ] || fail "bad WALLS created the run directory"
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --c-max 1 --out run-bad > log4f 2>&1 || rc=$?
+[ $rc -eq 2 ] && grep -q "C_MAX='1': must be a number > 1 (size-solve --c-max" log4f || fail "C_MAX 1: exit $rc, $(cat log4f)"
+[ ! -e run-bad ] || fail "bad C_MAX created the run directory"
 
 # --- resume with a working refine: step-0 is not redone (same bytes, same times), the loop ends with 0
 sleep 1.1  # a recomputed file would get a later modification time

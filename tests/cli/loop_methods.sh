@@ -105,4 +105,30 @@ assert dflt["options"]["walls"] == "slide" and dflt["sliding_wall_nodes"] > 0, d
 assert json.dumps(loop).count('"walls": "fixed"') == 1, loop
 PYEOF
 ran=$((ran + 1))
+# FIT_FRAME=capped: quadsmooth --fit-frame capped on size-solve's frame, recorded in the run's parameters
+out="$T/lpcvt-capped"
+make --no-print-directory -f "$SRC/Makefile.cases" loop BIN="$BIN" CASE="$SRC/examples/cases/smooth.json" \
+  MESH="$T/sq8.msh" P=1 METHOD=lpcvt MODE=feature STEPS=1 OUT="$out" PICTURES=no FIT_FRAME=capped > "$out.log" 2>&1 \
+  || { cat "$out.log" >&2; fail "FIT_FRAME=capped loop failed"; }
+"$PY" - "$out/step-0/adapted.json" "$out/loop.json" <<'PYEOF' || fail "FIT_FRAME=capped: quadsmooth's fit frame"
+import json, sys
+rep, loop = (json.load(open(f)) for f in sys.argv[1:])
+assert rep["options"]["fit_frame"] == "capped" and rep["fit_frame"]["mode"] == "capped", rep["options"]
+assert rep["command"].split("--frame ")[1].split()[0].endswith("step-0/frame.msh"), rep["command"]
+assert json.dumps(loop).count('"fit_frame": "capped"') == 1, loop
+PYEOF
+ran=$((ran + 1))
+# C_MAX / R_MAX (goal mode): passed to size-solve and recorded in the run's parameters
+out="$T/goal-cmax"
+make --no-print-directory -f "$SRC/Makefile.cases" loop BIN="$BIN" CASE="$SRC/examples/cases/sshock-advection.json" \
+  MESH="$T/sq8.msh" P=1 METHOD=lpcvt MODE=goal STEPS=1 OUT="$out" PICTURES=no C_MAX=2 R_MAX=10 > "$out.log" 2>&1 \
+  || { cat "$out.log" >&2; fail "C_MAX=2 goal loop failed"; }
+"$PY" - "$out/step-0/frame.json" "$out/loop.json" <<'PYEOF' || fail "C_MAX / R_MAX: size-solve's options"
+import json, sys
+rep, loop = (json.load(open(f)) for f in sys.argv[1:])
+assert "--r-max 10 --c-max 2" in rep["command"], rep["command"]
+s = json.dumps(loop)
+assert s.count('"c_max": "2"') == 1 and s.count('"r_max": "10"') == 1, loop
+PYEOF
+ran=$((ran + 1))
 echo "loop methods CLI: $ran loops checked"
