@@ -35,8 +35,9 @@ Frame fit_frame(const Frame& raw, const FitFrameOptions& opt, FitFrameReport* re
   // the same background and filters as lpcvt's (run.cpp, finish_background), in its units
   const double scale = frame_metric_scale();
   Background bg = Background::from_frame(raw, scale);
-  if (opt.smooth > 0) rep.smoothed_cells = smooth_metric(bg, opt.smooth).cells_changed;
-  if (opt.gradation > 0) rep.graded_cells = grade_metric(bg, opt.gradation).cells_changed;
+  const FilterReports fr = filter_metric(bg, opt.smooth, opt.gradation);
+  if (fr.smoothing) rep.smoothed_cells = fr.smoothing->cells_changed;
+  if (fr.gradation) rep.graded_cells = fr.gradation->cells_changed;
   if (opt.mode == FitFrame::Capped) {
     std::vector<Mat2> floor(raw.M.size());
     for (size_t c = 0; c < floor.size(); ++c) floor[c] = scale * raw.M[c];

@@ -178,6 +178,13 @@ FilterReport grade_metric(Background& bg, double beta) {
   return r;
 }
 
+FilterReports filter_metric(Background& bg, int passes, double beta) {
+  FilterReports r;
+  if (passes > 0) r.smoothing = smooth_metric(bg, passes);
+  if (beta > 0) r.gradation = grade_metric(bg, beta);
+  return r;
+}
+
 FilterReport cap_metric(Background& bg, const std::vector<Mat2>& floor) {
   FilterReport r;
   if (bg.is_analytic()) throw InputError("", "metric capping needs a frame (piecewise-constant metric)");

@@ -27,6 +27,8 @@
 // more than 1e-9 (relative; at most 200 updates per cell). Intersection only
 // refines; the uniform rescale afterwards restores the point count. The frame is rebuilt from
 // 𝓜 as for the smoothing.
+#include <optional>
+
 #include "lpcvt/background.hpp"
 
 namespace quadapt::lpcvt {
@@ -43,6 +45,13 @@ FilterReport smooth_metric(Background& bg, int passes);
 
 /// Anisotropic gradation (above); growth beta > 1 per unit metric length.
 FilterReport grade_metric(Background& bg, double beta);
+
+/// lpcvt's frame filters in their order (run.cpp; fit_frame.hpp repeats them for quadsmooth):
+/// smooth_metric when passes > 0, then grade_metric when beta > 0 (the caller checks beta > 1).
+struct FilterReports {
+  std::optional<FilterReport> smoothing, gradation;  ///< each when it ran
+};
+FilterReports filter_metric(Background& bg, int passes, double beta);
 
 /// The floor (fit_frame.hpp, "capped"): per background cell the metric intersection
 /// 𝓜_c ∩ 𝓕_c with 𝓕_c = F_cᵀ F_c (`floor`: one M per mesh cell, in the background's units), i.e.

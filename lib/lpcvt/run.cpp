@@ -93,15 +93,16 @@ void finish_background(Background& bg, const LpcvtJob& job, nlohmann::json& rep,
                        const std::function<void(const std::string&)>& log) {
   if (job.smooth > 0 || job.gradation > 0) {
     if (job.gradation != 0 && !(job.gradation > 1)) throw InputError("", "--gradation must be > 1");
-    if (job.smooth > 0) {
-      const FilterReport f = smooth_metric(bg, job.smooth);
+    const FilterReports fr = filter_metric(bg, job.smooth, job.gradation);
+    if (fr.smoothing) {
+      const FilterReport& f = *fr.smoothing;
       rep["smoothing"] = filter_json(f);
       rep["smoothing"]["passes"] = job.smooth;
       say(log, "metric smoothed (" + std::to_string(job.smooth) + " log-Euclidean passes): largest neighbour size ratio " +
                    sci(f.max_ratio_before) + " -> " + sci(f.max_ratio_after));
     }
-    if (job.gradation > 0) {
-      const FilterReport f = grade_metric(bg, job.gradation);
+    if (fr.gradation) {
+      const FilterReport& f = *fr.gradation;
       rep["gradation"] = filter_json(f);
       rep["gradation"]["growth"] = job.gradation;
       rep["gradation"]["updates"] = f.passes;

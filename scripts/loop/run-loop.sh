@@ -378,7 +378,8 @@ while :; do
           size-solve "$d/shape.msh" --growth "$GROWTH" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} -o "$d/frame.msh"
       fi
       if [ "$METHOD" = lpcvt ]; then
-        fit="$d/frame.msh" wf=()
+        fit="$d/frame.msh" wf=() qf=()
+        [ "$FIT_FRAME" != capped ] || qf=(--fit-frame capped)  # quadsmooth caps the filtered frame itself
         if [ "$FIT_FRAME" = meshed ]; then  # quadsmooth fits the frame lpcvt meshed (after its filters)
           fit="$d/meshed-frame.msh" wf=(--write-frame "$fit")
           # a resumed step without it, or with one older than tri.msh (lpcvt stopped between the
@@ -390,8 +391,7 @@ while :; do
         # tri.msh (no node moves; docs/recombine.md)
         run_tool "$d" recombine "$d/quad.msh" "$d/tri.msh" -- recombine "$d/tri.msh" -o "$d/quad.msh"
         run_tool "$d" quadsmooth "$d/adapted.msh" "$d/quad.msh" "$fit" -- \
-          quadsmooth "$d/quad.msh" -o "$d/adapted.msh" --frame "$fit" ${WALLS:+--walls "$WALLS"} \
-          $([ "$FIT_FRAME" != capped ] || echo --fit-frame capped)
+          quadsmooth "$d/quad.msh" -o "$d/adapted.msh" --frame "$fit" ${WALLS:+--walls "$WALLS"} ${qf[@]+"${qf[@]}"}
       else
         run_tool "$d" bamgquad "$d/quad.msh" "$d/frame.msh" -- bamgquad "$d/frame.msh" -o "$d/quad.msh" ${geo[@]+"${geo[@]}"}
         if [ "$SMOOTH_BAMG" = yes ]; then
