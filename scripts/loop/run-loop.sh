@@ -38,6 +38,7 @@ SEED="1" JITTER="0" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHEC
 MAX_ANISO=""  # size-solve --max-anisotropy; empty = its default (25)
 R_MAX=""      # goal mode: size-solve --r-max, the largest refinement factor per step; empty = its default (20)
 C_MAX=""      # goal mode: size-solve --c-max, the largest coarsening factor per step; empty = its default (4)
+SIZE_GRADATION=""  # size-solve --gradation G (lpcvt, bamg): h at most G x a face neighbour's; empty = its default (off)
 PHASES=""        # lpcvt --phases N (lattice phases tried; empty: lpcvt's default, auto)
 WALLS=""         # quadsmooth --walls slide|fixed (lpcvt path; empty: quadsmooth's default, slide)
 START_JITTER="0"  # > 0: the start mesh's interior nodes moved at random from SEED (meshconvert --jitter)
@@ -57,7 +58,7 @@ while [ $# -gt 0 ]; do
     --window) WINDOW="$val" ;; --thesis-case) THESIS_KEY="$val" ;;
     --geometry) GEOMETRY="$val" ;; --order) ORDER="$val" ;; --max-anisotropy) MAX_ANISO="$val" ;;
     --start-jitter) START_JITTER="$val" ;; --phases) PHASES="$val" ;; --walls) WALLS="$val" ;; --fit-frame) FIT_FRAME="$val" ;;
-    --r-max) R_MAX="$val" ;; --c-max) C_MAX="$val" ;;
+    --r-max) R_MAX="$val" ;; --c-max) C_MAX="$val" ;; --size-gradation) SIZE_GRADATION="$val" ;;
     *) die "unknown option $opt (see docs/loop.md)" ;;
   esac
 done
@@ -103,6 +104,8 @@ for rc in "R_MAX:$R_MAX:refinement" "C_MAX:$C_MAX:coarsening"; do
   [ -z "$rcv" ] || { is_num "$rcv" && "$PY" -c "import sys; sys.exit(0 if float('$rcv') > 1 else 1)"; } \
     || die "$rcn='$rcv': must be a number > 1 (size-solve --$(echo "$rcn" | tr "A-Z_" "a-z-"): the largest $rcw factor of a cell's area per step)"
 done
+[ -z "$SIZE_GRADATION" ] || { is_num "$SIZE_GRADATION" && "$PY" -c "import sys; sys.exit(0 if float('$SIZE_GRADATION') > 1 else 1)"; } \
+  || die "SIZE_GRADATION='$SIZE_GRADATION': must be a number > 1 (size-solve --gradation: the largest ratio of h between face neighbours)"
 rcm=()  # goal mode only: R_MAX / C_MAX when set
 [ "$MODE" != goal ] || rcm=(${R_MAX:+r_max="$R_MAX"} ${C_MAX:+c_max="$C_MAX"})
 is_num "$START_JITTER" && "$PY" -c "import sys; sys.exit(0 if float('$START_JITTER') <= 0.45 else 1)" \
@@ -188,10 +191,13 @@ phs=()  # likewise PHASES
 [ -z "$PHASES" ] || [ "$METHOD" != lpcvt ] || phs=(phases="$PHASES")
 wls=()  # likewise WALLS
 [ -z "$WALLS" ] || [ "$METHOD" != lpcvt ] || wls=(walls="$WALLS")
+sgr=()  # likewise SIZE_GRADATION, for the methods that call size-solve
+case "$METHOD" in lpcvt|bamg) sgr=(${SIZE_GRADATION:+size_gradation="$SIZE_GRADATION"}) ;; esac
 msg="$(ctl params "$OUT/loop.json" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
   method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" ${jit[@]+"${jit[@]}"} \
   smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} \
-  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} ${phs[@]+"${phs[@]}"} ${wls[@]+"${wls[@]}"} ${rcm[@]+"${rcm[@]}"} 2>&1)" || die "$msg"
+  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} ${phs[@]+"${phs[@]}"} ${wls[@]+"${wls[@]}"} ${rcm[@]+"${rcm[@]}"} \
+  ${sgr[@]+"${sgr[@]}"} 2>&1)" || die "$msg"
 
 name="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
 say() { echo "[$name] $*"; }
@@ -372,10 +378,11 @@ while :; do
         run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" "$CASE" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
         run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" "$d/dwr.msh" -- \
           size-solve "$d/shape.msh" --growth "$GROWTH" --dwr "$d/dwr.msh" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} \
-            ${R_MAX:+--r-max "$R_MAX"} ${C_MAX:+--c-max "$C_MAX"} -o "$d/frame.msh"
+            ${R_MAX:+--r-max "$R_MAX"} ${C_MAX:+--c-max "$C_MAX"} ${SIZE_GRADATION:+--gradation "$SIZE_GRADATION"} -o "$d/frame.msh"
       else
         run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" -- \
-          size-solve "$d/shape.msh" --growth "$GROWTH" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} -o "$d/frame.msh"
+          size-solve "$d/shape.msh" --growth "$GROWTH" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} \
+            ${SIZE_GRADATION:+--gradation "$SIZE_GRADATION"} -o "$d/frame.msh"
       fi
       if [ "$METHOD" = lpcvt ]; then
         fit="$d/frame.msh" wf=() qf=()

@@ -69,6 +69,9 @@ rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --walls l
 rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --c-max 1 --out run-bad > log4f 2>&1 || rc=$?
 [ $rc -eq 2 ] && grep -q "C_MAX='1': must be a number > 1 (size-solve --c-max" log4f || fail "C_MAX 1: exit $rc, $(cat log4f)"
 [ ! -e run-bad ] || fail "bad C_MAX created the run directory"
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --size-gradation 0.5 --out run-bad > log4g 2>&1 || rc=$?
+[ $rc -eq 2 ] && grep -q "SIZE_GRADATION='0.5': must be a number > 1 (size-solve --gradation" log4g || fail "SIZE_GRADATION 0.5: exit $rc, $(cat log4g)"
+[ ! -e run-bad ] || fail "bad SIZE_GRADATION created the run directory"
 
 # --- resume with a working refine: step-0 is not redone (same bytes, same times), the loop ends with 0
 sleep 1.1  # a recomputed file would get a later modification time

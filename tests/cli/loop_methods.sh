@@ -118,17 +118,17 @@ assert rep["command"].split("--frame ")[1].split()[0].endswith("step-0/frame.msh
 assert json.dumps(loop).count('"fit_frame": "capped"') == 1, loop
 PYEOF
 ran=$((ran + 1))
-# C_MAX / R_MAX (goal mode): passed to size-solve and recorded in the run's parameters
+# C_MAX / R_MAX (goal mode) and SIZE_GRADATION: passed to size-solve and recorded in the run's parameters
 out="$T/goal-cmax"
 make --no-print-directory -f "$SRC/Makefile.cases" loop BIN="$BIN" CASE="$SRC/examples/cases/sshock-advection.json" \
-  MESH="$T/sq8.msh" P=1 METHOD=lpcvt MODE=goal STEPS=1 OUT="$out" PICTURES=no C_MAX=2 R_MAX=10 > "$out.log" 2>&1 \
-  || { cat "$out.log" >&2; fail "C_MAX=2 goal loop failed"; }
-"$PY" - "$out/step-0/frame.json" "$out/loop.json" <<'PYEOF' || fail "C_MAX / R_MAX: size-solve's options"
+  MESH="$T/sq8.msh" P=1 METHOD=lpcvt MODE=goal STEPS=1 OUT="$out" PICTURES=no C_MAX=2 R_MAX=10 SIZE_GRADATION=1.5 \
+  > "$out.log" 2>&1 || { cat "$out.log" >&2; fail "C_MAX=2 goal loop failed"; }
+"$PY" - "$out/step-0/frame.json" "$out/loop.json" <<'PYEOF' || fail "C_MAX / R_MAX / SIZE_GRADATION: size-solve's options"
 import json, sys
 rep, loop = (json.load(open(f)) for f in sys.argv[1:])
-assert "--r-max 10 --c-max 2" in rep["command"], rep["command"]
+assert "--r-max 10 --c-max 2 --gradation 1.5" in rep["command"], rep["command"]
 s = json.dumps(loop)
-assert s.count('"c_max": "2"') == 1 and s.count('"r_max": "10"') == 1, loop
+assert s.count('"c_max": "2"') == 1 and s.count('"r_max": "10"') == 1 and s.count('"size_gradation": "1.5"') == 1, loop
 PYEOF
 ran=$((ran + 1))
 echo "loop methods CLI: $ran loops checked"
