@@ -4,7 +4,7 @@
 Given ANGLE in degrees and the rotation R(ANGLE), the rotated problem is u_rot(x) = u(R^T x) on
 R(square): the exact solution's expression with x, y replaced by the rotated-back coordinates,
 the advection R c, the diffusion R D R^T (numbers; constant expressions of the case are evaluated
-first by the case's own rules: pi, e), the same boundary names and Dirichlet data. The start mesh's
+first by the case's own rules: pi, e), the same boundary names, Dirichlet data and functional. The start mesh's
 nodes are rotated (MSH 4.1 ASCII; every other line copied), so the rotated problem on the rotated
 mesh is the same discrete problem: dgsolve gives the same error to rounding
 (tests/cli/loop_rotation.sh checks it).
@@ -74,7 +74,8 @@ def main():
         case["diffusion"][1][0] = case["diffusion"][0][1]  # exactly symmetric
     if isinstance(case.get("dirichlet"), dict) or "neumann" in case:
         raise SystemExit("rotate_case.py: data maps (dirichlet/neumann expressions) are not rotated; use a case with exact data")
-    case.pop("functional", None)  # J over x = 1 is no longer over a named line of the rotated square
+    # the functional stays: its boundary group rotates with the mesh, so J = integral of u^2 over it
+    # is the same number (dgsolve's functional on both: tests/cli/loop_rotation.sh)
     case["name"] = f"{case.get('name', 'case')}-rot{angle:g}"
     case["description"] = f"{case_path} rotated by {angle:g} degrees about the origin (bench/loop-rotation)"
     json.dump(case, open(out_case, "w"), indent=1)

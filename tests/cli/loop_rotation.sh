@@ -3,7 +3,7 @@
 # anisotropic diffusion, oblique advection) and the same problem rotated by 30 degrees about the
 # origin with its start mesh (bench/loop-rotation/rotate_case.py: u_rot(x) = u(R^T x), c -> R c,
 # D -> R D R^T, nodes rotated) must give one loop step's figures equal up to rounding:
-#   dgsolve:        the same L2 error (relative 1e-9);
+#   dgsolve:        the same L2 error and functional J = integral of u^2 over 'right' (relative 1e-9);
 #   estimate-frame: the same stretch rho and error coefficient B per cell (relative 1e-5; measured 4e-7), the angle theta turned
 #                   by 30 degrees (mod 180) where the cell is anisotropic (rho > 1.05);
 #   size-solve:     the same sizes h and rho, theta turned likewise.
@@ -33,6 +33,8 @@ sys.path.insert(0, lib)
 from golden_compare import read_msh
 a, b = (json.load(open(f"{T}/{k}-sol.json"))["l2_error"] for k in ("ref", "rot"))
 assert abs(a - b) <= 1e-9 * a, ("dgsolve L2 error", a, b)
+ja, jb = (json.load(open(f"{T}/{k}-sol.json"))["functional"] for k in ("ref", "rot"))
+assert abs(ja - jb) <= 1e-9 * abs(ja), ("dgsolve functional over the rotated boundary 'right'", ja, jb)
 
 def field(path, name):
     v = read_msh(path)["views"][name]["values"]
