@@ -7,8 +7,12 @@
 // merged (both sites replaced by the midpoint; when one of them is a fixed boundary site, the
 // free one is removed). Edges are visited from the most out-of-range one (largest L / lmax or
 // lmin / L) down; a site touched once is flagged and its other edges are ignored in this pass.
-// Boundary segments (consecutive fixed boundary sites) are never split; an edge whose midpoint
-// lies outside the domain (a chord across a re-entrant corner or a hole) is ignored.
+// Boundary segments (consecutive fixed boundary sites) are never split, nor a chord between two
+// boundary sites that runs along the boundary (its midpoint within 0.05 of its length of the
+// boundary polyline: on a straight wall oblique to the axes the wall points are collinear
+// only up to rounding, and the Delaunay graph may join two of them across a third — a split
+// there put a free site on the wall); an edge whose midpoint lies outside the domain (a chord
+// across a re-entrant corner or a hole) is ignored.
 //
 // Beyond the thesis (option metric_delaunay, default on): only edges that are also Delaunay in
 // the local metric are measured (the four points of the edge's two triangles mapped by M_eff at
@@ -49,7 +53,7 @@ SplitMergeResult split_merge(const Background& bg, std::vector<Vec2>& sites, int
 
 /// Brings the number of sites to `target` (beyond the thesis: complexity honesty): when there
 /// are too few, the longest measured Delaunay edges (eq. 4.12, as in split_merge, boundary
-/// segments excluded) get a new site at their midpoint; when there are too many, the shortest
+/// segments and chords along the boundary excluded) get a new site at their midpoint; when there are too many, the shortest
 /// edges are merged (as in split_merge). Each site takes part in one change per pass; passes
 /// repeat until the count is reached (at most 8). Fixed sites stay. Returns the change made
 /// (positive: sites added).
