@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "mesh/mesh.hpp"
 #include "quad/mesh_utils.hpp"
 
 namespace quadapt {
@@ -27,12 +28,6 @@ double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x
 std::uint64_t ukey(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
-double segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  Vec2 d = b - a;
-  double l2 = d.squaredNorm();
-  double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).norm();
 }
 }  // namespace
 

@@ -7,6 +7,7 @@
 #include "lpcvt/boundary_points.hpp"
 #include "lpcvt/delaunay.hpp"
 #include "lpcvt/rvd.hpp"
+#include "mesh/mesh.hpp"
 
 namespace quadapt::lpcvt {
 
@@ -87,12 +88,9 @@ bool along_boundary(const Vec2& a, const Vec2& b, const std::vector<Vec2>& sites
                     const std::vector<std::array<int, 2>>& boundary_segments) {
   constexpr double kAlongBoundary = 0.05;
   const Vec2 m = 0.5 * (a + b);
-  const double lim2 = kAlongBoundary * kAlongBoundary * (b - a).squaredNorm();
-  for (const auto& s : boundary_segments) {
-    const Vec2 &p = sites[s[0]], &q = sites[s[1]], d = q - p;
-    const double t = std::clamp(d.squaredNorm() > 0 ? (m - p).dot(d) / d.squaredNorm() : 0.0, 0.0, 1.0);
-    if ((p + t * d - m).squaredNorm() < lim2) return true;
-  }
+  const double lim = kAlongBoundary * (b - a).norm();
+  for (const auto& s : boundary_segments)
+    if (segment_distance(m, sites[s[0]], sites[s[1]]) < lim) return true;
   return false;
 }
 

@@ -53,8 +53,8 @@ SplitMergeResult split_merge(const Background& bg, std::vector<Vec2>& sites, int
 
 /// Brings the number of sites to `target` (beyond the thesis: complexity honesty): when there
 /// are too few, the longest measured Delaunay edges (eq. 4.12, as in split_merge, boundary
-/// segments and chords along the boundary excluded) get a new site at their midpoint; when there are too many, the shortest
-/// edges are merged (as in split_merge). Each site takes part in one change per pass; passes
+/// segments and chords along the boundary excluded) get a new site at their midpoint; when there
+/// are too many, the shortest edges are merged (as in split_merge). Each site takes part in one change per pass; passes
 /// repeat until the count is reached (at most 8). Fixed sites stay. Returns the change made
 /// (positive: sites added).
 int adjust_count(const Background& bg, std::vector<Vec2>& sites, int nfixed,

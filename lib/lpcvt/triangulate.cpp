@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "mesh/mesh.hpp"
 
 namespace quadapt::lpcvt {
 
@@ -57,11 +58,6 @@ void mark_domains(CDT& cdt) {
   }
 }
 
-double seg_dist(const Vec2& p, const Vec2& a, const Vec2& b) {
-  Vec2 d = b - a;
-  double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-  return (p - (a + t * d)).norm();
-}
 }  // namespace
 
 Mesh triangulate_domain(const std::vector<Vec2>& sites_in, int nfixed,
@@ -92,7 +88,7 @@ Mesh triangulate_domain(const std::vector<Vec2>& sites_in, int nfixed,
       if (cdt.is_edge(vh[s[0]], vh[s[1]])) continue;
       const Vec2 &a = sites[s[0]], &b = sites[s[1]];
       for (int i = nfixed; i < static_cast<int>(sites.size()); ++i)
-        if (!drop[i] && seg_dist(sites[i], a, b) <= 1e-9 * (b - a).norm()) {
+        if (!drop[i] && segment_distance(sites[i], a, b) <= 1e-9 * (b - a).norm()) {
           drop[i] = 1;
           split = true;
         }

@@ -58,11 +58,7 @@ double CellLocator::distance(int c, const Vec2& x) const {
   const Cell& cell = m_.cells[c];
   double d = INFINITY;
   for (int i = 0; i < cell.nv; ++i) {
-    const Vec2& a = m_.nodes[cell.v[i]];
-    const Vec2& b = m_.nodes[cell.v[(i + 1) % cell.nv]];
-    const Vec2 ab = b - a;
-    const double t = ab.squaredNorm() > 0 ? std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-    d = std::min(d, (a + t * ab - x).norm());
+    d = std::min(d, segment_distance(x, m_.nodes[cell.v[i]], m_.nodes[cell.v[(i + 1) % cell.nv]]));
   }
   return d;
 }

@@ -168,6 +168,13 @@ Eigen::Matrix2d map_jacobian(const Mesh& m, int c, double xi, double eta) {
 
 double cell_size(const Mesh& m, int c) { return std::sqrt(std::abs(cell_area(m, c))); }
 
+double segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  const double l2 = d.squaredNorm();
+  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * d)).norm();
+}
+
 Mesh make_structured_quads(int nx, int ny, double x0, double x1, double y0, double y1) {
   if (nx < 1 || ny < 1) throw Error("structured grid needs at least 1x1 cells");
   Mesh m;

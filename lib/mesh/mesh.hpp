@@ -120,6 +120,8 @@ Vec2 map_to_physical(const Mesh& m, int c, double xi, double eta);
 Eigen::Matrix2d map_jacobian(const Mesh& m, int c, double xi, double eta);
 /// Longest/shortest edge lengths and diameter-like size sqrt(area) of cell c.
 double cell_size(const Mesh& m, int c);
+/// Euclidean distance from p to the segment a-b (to a when a == b).
+double segment_distance(const Vec2& p, const Vec2& a, const Vec2& b);
 
 // ----------------------------------------------------------------------------- builders
 

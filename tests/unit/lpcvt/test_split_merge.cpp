@@ -24,11 +24,7 @@ Mesh turned_square(double deg) {
 double closest_to_wall(const std::vector<Vec2>& s, int nfixed, const std::vector<std::array<int, 2>>& segments) {
   double best = 1e300;
   for (size_t i = nfixed; i < s.size(); ++i)
-    for (const auto& g : segments) {
-      const Vec2 &p = s[g[0]], d = s[g[1]] - p;
-      const double t = std::clamp((s[i] - p).dot(d) / d.squaredNorm(), 0.0, 1.0);
-      best = std::min(best, (p + t * d - s[i]).norm());
-    }
+    for (const auto& g : segments) best = std::min(best, quadapt::segment_distance(s[i], s[g[0]], s[g[1]]));
   return best;
 }
 
