@@ -5,7 +5,7 @@
 #               --mode feature|goal --steps N --growth G --out DIR
 #               [--maxdofs N] [--fraction F] [--ff-by FIELD] [--seed S] [--smooth-bamg yes|no]
 #               [--max-anisotropy A] [--start-jitter J] [--fit-frame raw|meshed|capped] [--phases N]
-#               [--walls slide|fixed] [--r-max R] [--c-max C]
+#               [--walls slide|fixed] [--r-max R] [--c-max C] [--size-gradation G]
 #               [--pictures yes|no] [--window x0,x1,y0,y1] [--thesis-case KEY] [--check-only]
 #
 # Every input is checked, and every tool the method needs is looked up, BEFORE any work starts.
@@ -99,13 +99,14 @@ is_uint "$SEED" || die "SEED='$SEED': must be a non-negative integer"
 is_num "$JITTER" || die "JITTER='$JITTER': must be a non-negative number (lpcvt --jitter, target edges)"
 [ -z "$MAX_ANISO" ] || { is_num "$MAX_ANISO" && "$PY" -c "import sys; sys.exit(0 if float('$MAX_ANISO') >= 1 else 1)"; } \
   || die "MAX_ANISOTROPY='$MAX_ANISO': must be a number >= 1 (size-solve --max-anisotropy, largest h1/h2)"
-for rc in "R_MAX:$R_MAX:refinement" "C_MAX:$C_MAX:coarsening"; do
-  IFS=: read -r rcn rcv rcw <<< "$rc"
+# size-solve's factors > 1, each when set: NAME:value:option:what it bounds
+for rc in "R_MAX:$R_MAX:--r-max:the largest refinement factor of a cell's area per step" \
+          "C_MAX:$C_MAX:--c-max:the largest coarsening factor of a cell's area per step" \
+          "SIZE_GRADATION:$SIZE_GRADATION:--gradation:the largest ratio of h between face neighbours"; do
+  IFS=: read -r rcn rcv rco rcw <<< "$rc"
   [ -z "$rcv" ] || { is_num "$rcv" && "$PY" -c "import sys; sys.exit(0 if float('$rcv') > 1 else 1)"; } \
-    || die "$rcn='$rcv': must be a number > 1 (size-solve --$(echo "$rcn" | tr "A-Z_" "a-z-"): the largest $rcw factor of a cell's area per step)"
+    || die "$rcn='$rcv': must be a number > 1 (size-solve $rco: $rcw)"
 done
-[ -z "$SIZE_GRADATION" ] || { is_num "$SIZE_GRADATION" && "$PY" -c "import sys; sys.exit(0 if float('$SIZE_GRADATION') > 1 else 1)"; } \
-  || die "SIZE_GRADATION='$SIZE_GRADATION': must be a number > 1 (size-solve --gradation: the largest ratio of h between face neighbours)"
 rcm=()  # goal mode only: R_MAX / C_MAX when set
 [ "$MODE" != goal ] || rcm=(${R_MAX:+r_max="$R_MAX"} ${C_MAX:+c_max="$C_MAX"})
 is_num "$START_JITTER" && "$PY" -c "import sys; sys.exit(0 if float('$START_JITTER') <= 0.45 else 1)" \
