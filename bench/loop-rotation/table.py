@@ -12,7 +12,7 @@ import csv, json, math, os, sys
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "scripts", "loop"))
-from compare import interp_loglog  # noqa: E402
+from compare import geomean, interp_loglog  # noqa: E402
 
 KEYS = {"sshock-feature": "sshock-feature", "bl-feature": "boundary-layer-feature"}
 
@@ -62,8 +62,7 @@ def main():
     print()
     for m, v in ratios.items():
         if v:
-            g = math.exp(sum(math.log(x) for x in v) / len(v))
-            print(f"{m}: rotated / unrotated over {len(v)} rows: geometric mean {g:.2f}, range {min(v):.2f}-{max(v):.2f}")
+            print(f"{m}: rotated / unrotated over {len(v)} rows: geometric mean {geomean(v):.2f}, range {min(v):.2f}-{max(v):.2f}")
     print(f"L_p-CVT at or below BAMG on the rotated problems: {wins} of {total}")
 
 
