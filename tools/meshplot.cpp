@@ -43,9 +43,7 @@ int main(int argc, char** argv) {
 
   return tool.run(argc, argv, [&] {
     tool.input(in);
-    // The report goes to PICTURE.json by default (e.g. sol.png.json), never over the mesh's own
-    // report (sol.json from dgsolve) as the usual OUTPUT-with-.json rule would.
-    if (tool.report_path().empty() && out != "-") tool.set_report_path(out + ".json");
+    // the report: PICTURE.json with the extension kept (sol.png.json; default_report_path)
     tool.output(out);
     plot::picture_format(out);  // unknown extension -> error before any work
     plot::MeshPlotOptions opt;

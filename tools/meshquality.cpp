@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
       .add_option("--require", require, "Element type MESH must consist of: any, quads or triangles")
       ->check(CLI::IsMember({"any", "quads", "triangles"}))
       ->capture_default_str();
+  tool.app().get_option("--report")->description("JSON report path (default: standard output)");
   return tool.run(argc, argv, [&] {
     tool.input(in);
     if (!frame_path.empty()) tool.input(frame_path);

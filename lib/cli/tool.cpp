@@ -23,6 +23,12 @@ constexpr const char* kExitCodes =
 
 }  // namespace
 
+std::string default_report_path(const std::string& output) {
+  const std::filesystem::path p(output);
+  if (p.extension() == ".msh") return std::filesystem::path(p).replace_extension(".json").string();
+  return output + ".json";
+}
+
 Tool::Tool(std::string name, std::string summary, std::string details)
     : name_(std::move(name)), app_(summary, name_) {
   std::string footer = details.empty() ? std::string(kExitCodes) : details + "\n\n" + kExitCodes;
@@ -31,7 +37,8 @@ Tool::Tool(std::string name, std::string summary, std::string details)
   app_.footer(footer);
   app_.set_version_flag("--version", version_text(name_));
   app_.add_option("--report", report_path_,
-                  "JSON report path (default: the output path with extension .json)");
+                  "JSON report path (default: beside the output, OUT.msh -> OUT.json; any other output name "
+                  "gets .json appended, e.g. sol.vtu -> sol.vtu.json, never over sol.json)");
   app_.add_flag("-q,--quiet", quiet_, "No progress messages on stderr");
   app_.add_option("--threads", threads_,
                   "OpenMP threads (default: OMP_NUM_THREADS, else all cores; at most 4 x the cores)")
@@ -57,14 +64,17 @@ void Tool::output(const std::string& path) {
   const OutputTarget target = resolve_output(path);
   use_stdio(path, stdout_used_, "output");
   protect_output(path);
+  // a mesh output may get its Gmsh options file beside it (io/gmsh_options.hpp): refused
+  // before any work when that is an input, like the output itself
+  if (target.kind == OutputTarget::Kind::Regular && std::filesystem::path(path).extension() == ".msh")
+    protect_output(path + ".opt");
   outputs_.push_back(path);
   report_["outputs"].push_back(path);
   if (!report_decided_) {
     report_decided_ = true;
     // Beside the first output; none when that is standard output, a device or a FIFO (unless
     // --report): /dev/stdout.json is nobody's report.
-    if (report_path_.empty() && target.kind == OutputTarget::Kind::Regular)
-      report_path_ = std::filesystem::path(path).replace_extension(".json").string();
+    if (report_path_.empty() && target.kind == OutputTarget::Kind::Regular) report_path_ = default_report_path(path);
     declare_report();
   }
 }
@@ -152,8 +162,6 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   } guard_off;
   try {
     body();
-    write_report();
-    return 0;
   } catch (const PartialFailure& e) {
     std::cerr << name_ << ": " << e.what() << std::endl;
     try { write_report(); } catch (...) {}
@@ -169,6 +177,18 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
     return 3;
   } catch (...) {
     std::cerr << name_ << ": internal error (unknown exception)" << std::endl;
+    return 3;
+  }
+  // The outputs are written and valid; a report that cannot be written (a full disk) is a
+  // failure with a valid output saved: exit 1 (2 where the report is the only output).
+  try {
+    write_report();
+    return 0;
+  } catch (const Error& e) {
+    std::cerr << name_ << ": " << e.what() << (outputs_.empty() ? "" : " (the outputs were written)") << std::endl;
+    return outputs_.empty() ? 2 : 1;
+  } catch (const std::exception& e) {
+    std::cerr << name_ << ": internal error: " << e.what() << std::endl;
     return 3;
   }
 }

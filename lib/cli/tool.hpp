@@ -51,8 +51,7 @@ class Tool {
   /// Declares an output file ("-": standard output; see core/atomic_file for symlinks, devices
   /// and FIFOs). Throws InputError (exit 2, nothing written) for "", a directory, a missing
   /// folder, an input, or standard output used twice. The first output decides the default
-  /// report path: OUTPUT with its extension replaced by .json (none when OUTPUT is "-", a
-  /// device or a FIFO).
+  /// report path, default_report_path(OUTPUT) (none when OUTPUT is "-", a device or a FIFO).
   /// Call before writing.
   void output(const std::string& path);
 
@@ -108,6 +107,11 @@ class Tool {
   std::chrono::steady_clock::time_point start_;
   std::string start_date_;  ///< UTC, ISO 8601 (provenance)
 };
+
+/// The report beside an output: X.msh -> X.json; any other name gets .json appended (sol.vtu ->
+/// sol.vtu.json, sol.png -> sol.png.json), so that converting or drawing sol.msh never replaces
+/// the sol.json its solver wrote.
+std::string default_report_path(const std::string& output);
 
 /// Peak resident memory of this process in MiB (from /proc/self/status VmHWM).
 double peak_memory_mb();

@@ -109,4 +109,29 @@ meshplot -q frame.msh --field Vinv -o - > pic.svg
 head -c 200 pic.svg | grep -q '<svg' || fail "meshplot -o - is not SVG"
 expect_exit 2 "standard output is used twice" meshconvert sol.msh -o - --report -
 expect_exit 2 "standard input is used twice" meshquality - --frame -
+
+# 6. the default report never replaces another tool's: converting sol.msh to sol.vtu writes
+# sol.vtu.json beside it and leaves dgsolve's sol.json as it was (was: replaced by meshconvert's)
+cp sol.json sol.json.before
+meshconvert -q sol.msh -o sol.vtu
+same_bytes sol.json sol.json.before
+python3 -c "import json; r = json.load(open('sol.vtu.json')); assert r['tool'] == 'meshconvert', r['tool']" ||
+  fail "sol.vtu.json is not meshconvert's report"
+meshconvert -q sol.msh -o conv.msh
+[ -s conv.json ] || fail "OUT.msh's report is not OUT.json"
+# meshconvert picks the format by the extension: one it does not write is refused before any work
+expect_exit 2 "out.vtk" meshconvert sol.msh -o out.vtk
+[ ! -e out.vtk ] || fail "meshconvert wrote out.vtk"
+# an output mesh's Gmsh options file (OUT.msh.opt) that is an input: refused before the solve
+# (was: the solve ran, out.msh was written, then exit 2)
+cp plain.msh out.msh.opt
+expect_exit 2 "out.msh.opt" dgsolve out.msh.opt -c case.json -p 1 -o out.msh
+[ ! -e out.msh ] || fail "dgsolve wrote out.msh before refusing out.msh.opt"
+same_bytes out.msh.opt plain.msh
+# the outputs written, the report not (a full device): exit 1, "the outputs were written"
+if [ -w /dev/full ]; then
+  expect_exit 1 "" meshconvert sol.msh -o full.msh --report /dev/full
+  case "$ERR" in *"/dev/full"*"(the outputs were written)"*) ;; *) fail "report on /dev/full: $ERR" ;; esac
+  meshconvert -q full.msh -o /dev/null --require quads
+fi
 echo "ok: output paths"
