@@ -6,6 +6,7 @@
 
 #include "case/expression.hpp"
 #include "cli/tool.hpp"
+#include "dg/degree.hpp"
 #include "core/format.hpp"
 #include "estimate/interpolate.hpp"
 #include "estimate/estimate_frame.hpp"
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"face", "vertex"}))
       ->capture_default_str();
   auto* ex = app.add_option("--exact", exact, "Use the GLL interpolant of this expression in x, y instead of the field");
-  auto* pe = app.add_option("-p,--degree", p_exact, "DG degree P of the --exact interpolant (>= 1)");
+  auto* pe = app.add_option("-p,--degree", p_exact, "DG degree P of the --exact interpolant (" + degree_range_text() + ")");
   ex->needs(pe);
   pe->needs(ex);
   app.add_option("--max-anisotropy", opt.max_anisotropy,
@@ -67,7 +68,7 @@ int main(int argc, char** argv) {
       vo.allow_curved = true;  // reconstructed on the curved map (docs/curved.md)
       sol = read_valid_msh(in, vo);
       if (!exact.empty()) {
-        if (p_exact < 1) throw InputError("", "-p must be >= 1");
+        check_degree(p_exact, "-p");
         Expr e = parse_expression(exact);
         sol.set_field(interpolate_dg(sol, p_exact, [&](double x, double y) { return evaluate(e, x, y); }, opt.field));
         tool.option("exact", exact);

@@ -99,6 +99,11 @@ int main(int argc, char** argv) {
   app.add_option("--cells-per-triangle", job.cells_per_triangle, "Final all-quad cells per triangle that recombine "
                  "gives (2 in theory; 1.92-2.01 measured): the point count is sized by 2/R")
       ->capture_default_str()->check(CLI::Range(1.0, 3.0));
+  app.add_option("--max-points", job.max_points, "Refuse a frame that asks for more points than this (0 = no "
+                 "limit; ~1.4 kB of memory per point): a frame far beyond it is nearly always a size-convention "
+                 "or --complexity mistake")
+      ->capture_default_str()
+      ->check(NonNegativeValue);
   app.add_option("--write-frame", frame_out, "Also write the frame actually meshed (after filters and --complexity)");
   app.add_flag("--no-exact-count", no_exact, "Do not set the point count to the requested one (adjust_count)");
   app.add_option("--max-cycles", opt.max_cycles, "Split/merge cycles at most")->capture_default_str()->check(PositiveValue);
@@ -165,6 +170,7 @@ int main(int argc, char** argv) {
         const Frame f = read_frame(in, convention == "auto" ? std::nullopt : std::optional(parse_size_convention(convention)));
         tool.option("convention", to_string(f.source));
         bg = frame_background(f, job, tool.report(), log);
+        check_point_budget(bg, job, in);
       }
     }
     LpcvtResult r;

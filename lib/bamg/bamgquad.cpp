@@ -5,6 +5,7 @@
 
 #include "bamg/frame_metric.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 namespace quadapt {
 
@@ -17,6 +18,13 @@ Mesh bamg_quad(const Frame& fr, const BamgQuadOptions& opt, BamgQuadStats* stats
   st.target_complexity = fr.target_cells();
   if (!(st.target_complexity > 0) || !std::isfinite(st.target_complexity))
     throw InputError(path, "the frame's element count int |det M|/4 is not positive and finite");
+  // About 4 cells per BAMG vertex (T ~ 2 V triangles, ~2 cells each): a frame that asks for more
+  // than the vertex limit gives BAMG stops at the limit, far from the target, so refuse it here.
+  if (opt.ffbamg.max_vertices > 0 && st.target_complexity > 4.0 * opt.ffbamg.max_vertices)
+    throw InputError(path, "the frame asks for " + sci(st.target_complexity) + " cells; BAMG would need about " +
+                               sci(st.target_complexity / 4) + " vertices, more than --max-vertices " +
+                               std::to_string(opt.ffbamg.max_vertices) +
+                               "; check the frame's size convention (--convention) or raise --max-vertices");
   st.edge_factor = opt.edge_factor > 0 ? opt.edge_factor : default_bamg_edge_factor();
 
   InriaMesh bg;

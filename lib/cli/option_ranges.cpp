@@ -40,7 +40,9 @@ const std::vector<OptionRange>& option_ranges() {
       {"*",              "--norm-q",                1,     kInf,  false, false},
       {"*",              "--max-anisotropy",        1,     kInf,  false, false},
       {"*",              "--complexity",            0,     kInf,  true,  false},
-      {"*",              "--gradation",             0,     kInf,  false, false},
+      // size ratio between neighbours: 0 = off; BAMG ignores its -ratio below 1.1 (measured)
+      {"*",              "--gradation",             1,     kInf,  true,  false, true},
+      {"bamgquad",       "--gradation",             1.1,   kInf,  false, false, true},
       {"lpcvt",          "--scale",                 0,     kInf,  true,  false},
       {"lpcvt",          "--weight",                0,     kInf,  false, false},
       {"lpcvt",          "--initial",               0,     kInf,  false, false},
@@ -74,7 +76,8 @@ CLI::Validator range_check(const OptionRange& r) {
         double v;
         if (!parse_number(s, v)) return std::string();  // the type conversion reports it
         const bool ok = (r.lo_open ? v > r.lo : v >= r.lo) && (r.hi_open ? v < r.hi : v <= r.hi);
-        return ok ? std::string() : s + " is not in " + interval(r);
+        if (ok || (r.zero_off && v == 0)) return std::string();
+        return s + (r.zero_off ? " is not 0 (off) or in " : " is not in ") + interval(r);
       },
       "", std::string("range ") + r.option);
 }
@@ -120,10 +123,14 @@ void apply_option_ranges(const std::string& tool, CLI::App& app) {
           },
           "", "finite"));
     }
+    // the tool's own row if it has one, else the "*" row
+    const OptionRange* row = nullptr;
     for (const OptionRange& r : option_ranges()) {
-      if (name != r.option || (std::string(r.tool) != "*" && r.tool != tool)) continue;
-      opt->check(range_check(r));
+      if (name != r.option) continue;
+      if (r.tool == tool) row = &r;
+      else if (std::string(r.tool) == "*" && !row) row = &r;
     }
+    if (row) opt->check(range_check(*row));
   }
 }
 

@@ -11,12 +11,14 @@
 namespace quadapt {
 
 /// One row: `tool` ("*" for every tool) and the option's long name ("--rtol"); the interval
-/// from lo to hi, each end open or closed (hi may be infinity).
+/// from lo to hi, each end open or closed (hi may be infinity); `zero_off`: 0 is accepted too
+/// (the option's "off", e.g. --gradation: 0 or a growth > 1).
 struct OptionRange {
   const char* tool;
   const char* option;
   double lo, hi;
   bool lo_open, hi_open;
+  bool zero_off = false;
 };
 
 /// The table.

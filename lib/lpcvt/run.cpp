@@ -169,11 +169,20 @@ Background saddle_background(int grid, bool sampled, const LpcvtJob& job, nlohma
   return bg;
 }
 
+void check_point_budget(const Background& bg, const LpcvtJob& job, const std::string& path) {
+  const double n = bg.metric_area();
+  if (job.max_points > 0 && !(n <= job.max_points))
+    throw InputError(path, "the frame asks for " + sci(n) + " points, more than --max-points " + sci(job.max_points) +
+                               " (about 1.4 kB of memory each); check its size convention (--convention), --complexity "
+                               "and --scale, or raise --max-points");
+}
+
 int auto_phases(const Background& bg) { return bg.metric_area() <= kAutoPhasePoints ? kAutoPhases : 1; }
 
 LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann::json& rep,
                             const std::function<void(const std::string&)>& log) {
   const LpcvtOptions& opt = job.lpcvt;
+  check_point_budget(bg, job, "");
   if (!(opt.split.lmin >= 0 && opt.split.lmax > opt.split.lmin)) throw InputError("", "need 0 <= --lmin < --lmax");
   rep["options"]["weight"] = opt.lbfgs.gamma;
   const bool lattice = opt.seed_mode == SeedMode::Lattice && !opt.multilevel && !bg.is_analytic();

@@ -32,6 +32,10 @@ struct LpcvtJob {
   /// Lattice start: run from this many lattice phases and keep the best recombined one
   /// (lpcvt/phases.hpp); 1 = phase 0 only; 0 = auto_phases(). Ignored for the other starts.
   int phases = 0;
+  /// The most points a run may be asked for (metric area; 0 = no limit): about 1.4 kB of memory
+  /// each (1.55 GB at 1.1e6 points, docs/bench-lpcvt.md), so 1e7 is ~14 GB. A frame far beyond
+  /// it is nearly always a unit or convention mistake; check_point_budget refuses it up front.
+  double max_points = 1e7;
 
   /// The lpcvt tool's defaults for a frame (docs/lpcvt.md): LpcvtOptions::for_frame(), metric
   /// cells, --smooth 4, --gradation 2, --orientation boundary.
@@ -40,6 +44,10 @@ struct LpcvtJob {
   /// Euclidean cells, no filters, the frame's own orientation.
   static LpcvtJob for_analytic();
 };
+
+/// Throws InputError(path, ...) when `bg` asks for more than job.max_points points (its metric
+/// area), before any point is made.
+void check_point_budget(const Background& bg, const LpcvtJob& job, const std::string& path);
 
 /// The background of a frame: M_eff = scale * M, then --smooth/--gradation/--orientation, the complexity
 /// rescale and the cells-per-triangle factor. Writes report keys smoothing, gradation,

@@ -52,6 +52,12 @@ PY
 # --- constant frame: final quads 2 h1 = 0.1 along 30 degrees, 2 h2 = 0.01 across; 1000 cells
 python3 "$T/frame.py" 10 30 0.05 0.005 "$T/frame.msh"
 bamgquad -q "$T/frame.msh" -o "$T/q.msh"
+# more cells than BAMG's vertex limit can give (~4 per vertex): exit 2 before BAMG runs (was: exit
+# 0 with the limit's mesh, ratio 1.7e-10 on a frame scaled by 1e6)
+rc=0; bamgquad "$T/frame.msh" -o "$T/big.msh" --max-vertices 200 2> "$T/big.err" || rc=$?
+[ $rc -eq 2 ] && grep -q "frame.msh: the frame asks for 1.000e+03 cells; BAMG would need about 2.500e+02 vertices, more than --max-vertices 200" "$T/big.err" ||
+  { cat "$T/big.err"; echo "FAIL: --max-vertices: exit $rc"; exit 1; }
+[ ! -e "$T/big.msh" ] || { echo "FAIL: --max-vertices wrote output"; exit 1; }
 python3 - "$T/q.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1])); q = r["quality"]; s = r["stretch"]

@@ -14,6 +14,12 @@ FRAME="$PY $S/tests/cli/lpcvt_frame.py"
 $FRAME "$T/iso.msh" --n 4 --h1 0.025 --h2 0.025
 lpcvt "$T/iso.msh" -o "$T/iso-tri.msh" --init density --delta 1e-10 --past 5 --move-tol 0 --edge-tol 0 --max-iterations 500 2> "$T/iso.err"
 grep -q "cycle 1:" "$T/iso.err"
+# a frame that asks for more than --max-points (default 1e7, ~14 GB; a convention or
+# --complexity mistake): exit 2 naming the frame, before any point is made, nothing written
+rc=0; lpcvt "$T/iso.msh" -o "$T/big.msh" --max-points 50 2> "$T/big.err" || rc=$?
+[ $rc -eq 2 ] && grep -q "iso.msh: the frame asks for 1.000e+02 points, more than --max-points 5.000e+01" "$T/big.err" ||
+  { cat "$T/big.err"; echo "FAIL: --max-points: exit $rc"; exit 1; }
+[ ! -e "$T/big.msh" ] && [ ! -e "$T/big.json" ] || { echo "FAIL: --max-points wrote output"; exit 1; }
 $PY - "$T/iso-tri.json" "$T/iso-tri.msh" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))

@@ -27,6 +27,14 @@ expect_exit 2 "--sweeps: must be >= 0 (got -1)" quadsmooth m.msh --sweeps -1 -o 
 expect_exit 2 "--edge-factor: must be > 0 (got 0)" bamgquad frame.msh --edge-factor 0 -o x.msh
 expect_exit 2 "--glyph-scale" meshplot frame.msh --field Vinv --glyph-scale 0 -o x.svg
 expect_exit 2 "--threads: must be >= 0 (got -3)" refine m.msh --uniform -o x.msh --threads -3
+# --gradation: 0 (off) or a growth > 1 (was [0, inf): bamgquad took 0.5, which BAMG ignores below 1.1)
+expect_exit 2 "--gradation: 0.5 is not 0 (off) or in (1, inf)" size-solve shape.msh --complexity 2000 --gradation 0.5 -o x.msh
+expect_exit 2 "--gradation: 1 is not 0 (off) or in (1, inf)" lpcvt frame.msh --gradation 1 -o x.msh
+expect_exit 2 "--gradation: 1.05 is not 0 (off) or in [1.1, inf)" bamgquad frame.msh --gradation 1.05 -o x.msh
+bamgquad -q frame.msh --gradation 0 -o g0.msh
+# estimate-frame --exact: the library's degrees (was: any p >= 1; -p 100 grew past 3 GB)
+expect_exit 2 "-p 9 is out of range (1..8)" estimate-frame sol.msh --exact "x*x" -p 9 -o x.msh
+[ ! -e x.msh ] || fail "a refused option wrote x.msh"
 case "$ERR" in *[0-9][0-9][0-9][0-9][0-9][0-9][0-9][0-9][0-9][0-9]*) fail "absurd bound printed: $ERR" ;; esac
 if [ -e x.msh ] || [ -e x.json ] || [ -e x.svg ]; then fail "an output was written"; fi
 
