@@ -130,8 +130,7 @@ if [ -z "$FF_BY" ]; then
 fi
 
 # tools this loop needs
-tools=(dgsolve)
-if [ -n "$GEOMETRY" ] || [ "$START_JITTER" != 0 ]; then tools+=(meshconvert); fi
+tools=(dgsolve meshconvert)  # meshconvert: MESH is validated before anything is written
 case "$METHOD" in
   uniform) tools+=(refine) ;;
   fixed-fraction) if [ "$MODE" = goal ]; then tools+=(adjoint refine); else tools+=(estimate-frame refine); fi ;;
@@ -154,6 +153,8 @@ if [ "$MODE" = goal ] && [ "$METHOD" != uniform ]; then pmax=$((pmax - 1)); fi
 if [ "$P" -lt "$pmin" ] || [ "$P" -gt "$pmax" ]; then
   die "P=$P: the DG degree must be $pmin..$pmax$([ "$MODE" = goal ] && [ "$METHOD" != uniform ] && echo " in goal mode (the adjoint solves at p+1)")"
 fi
+# MESH: a valid all-quad mesh (meshconvert reads and validates it and writes nothing)
+err="$(meshconvert -q "$MESH" -o /dev/null --require quads 2>&1)" || die "MESH: ${err#meshconvert: }"
 if [ "$PICTURES" = yes ] && ! command -v meshplot >/dev/null 2>&1; then
   echo "loop: note: meshplot not found; the run will have no mesh pictures" >&2
 fi

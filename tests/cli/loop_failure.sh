@@ -72,6 +72,15 @@ rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --c-max 1
 rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --size-gradation 0.5 --out run-bad > log4g 2>&1 || rc=$?
 [ $rc -eq 2 ] && grep -q "SIZE_GRADATION='0.5': must be a number > 1 (size-solve --gradation" log4g || fail "SIZE_GRADATION 0.5: exit $rc, $(cat log4g)"
 [ ! -e run-bad ] || fail "bad SIZE_GRADATION created the run directory"
+# a MESH that is not a mesh: status 2, the user's file named, nothing written (was: status 1
+# from dgsolve in step-0, naming run-bad/step-0/mesh.msh, with loop.json and step-0 left behind)
+echo "not a mesh" > text.msh
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --mesh text.msh --out run-bad > log4h 2>&1 || rc=$?
+[ $rc -eq 2 ] && grep -q "^loop: error: MESH: text.msh: " log4h || fail "MESH text.msh: exit $rc, $(cat log4h)"
+[ ! -e run-bad ] || fail "a bad MESH created the run directory"
+rc=0; "${MK[@]}" loop BIN="$PWD/bin" OUT=run-bad MESH=text.msh > log4i 2>&1 || rc=$?
+[ $rc -eq 2 ] && tail -n 1 log4i | grep -q '\] Error 2$' || fail "make, MESH text.msh: exit $rc, $(tail -n 2 log4i)"
+[ ! -e run-bad ] || fail "make, a bad MESH created the run directory"
 
 # --- resume with a working refine: step-0 is not redone (same bytes, same times), the loop ends with 0
 sleep 1.1  # a recomputed file would get a later modification time
