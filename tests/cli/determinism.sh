@@ -8,7 +8,6 @@
 set -euo pipefail
 S=$QUADAPT_SOURCE_DIR
 . "$S/tests/cli/lib/assert.sh"
-command -v gmsh >/dev/null || { echo "SKIPPED: gmsh (the program) not installed"; exit 77; }
 in_temp_dir
 export OMP_NUM_THREADS=2
 dgsolve -q "$E/meshes/square16.msh" -c "$E/cases/sshock.json" -p 2 -o sol.msh

@@ -45,7 +45,7 @@ assert [int(r["dofs"]) for r in rows] == [4 * c for c in cells]
 e = [float(r["l2_error"]) for r in rows]
 assert e[0] > e[1] > e[2] > 0, e
 rate = [(e[i] / e[i + 1]) for i in range(2)]
-assert rate[-1] > 2.5, "uniform refinement at p=1 should reduce the L2 error ~4x: %s" % rate
+assert min(rate) > 3.5, "uniform refinement at p=1 should reduce the L2 error ~4x (order 2; measured 3.97, 3.99): %s" % rate
 assert float(rows[0]["t_refine"]) > 0 and rows[2]["t_refine"] == "", rows
 PYEOF
 

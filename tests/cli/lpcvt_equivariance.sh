@@ -7,7 +7,7 @@
 # triangles and recombine's quads must be the mapped ones (to 1e-9), and quadsmooth's mesh must
 # have the same cells, the same irregular vertices and the same metric figures (quadsmooth's
 # sweeps follow the node numbering: to 0.01 degrees with --walls fixed, 0.05 with sliding walls). With the seed cell not mapped (cell 1 in
-# all three) the outputs differ: on this frame the lattice's phase against the walls decides
+# all three) the outputs differed when this test was written (not rerun here): on this frame the lattice's phase against the walls decides
 # where rows end (docs/quad-quality.md, "The lattice's phase").
 set -euo pipefail
 SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}

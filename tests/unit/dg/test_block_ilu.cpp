@@ -10,6 +10,7 @@
 #include "dg/block_matrix.hpp"
 #include "dg/discretization.hpp"
 #include "dg_test_meshes.hpp"
+#include "../worst.hpp"
 
 using namespace quadapt;
 
@@ -36,7 +37,7 @@ double pattern_mismatch(const BlockSparseMatrix& B, const Eigen::MatrixXd& M) {
     for (long long k = B.row_start()[I]; k < B.row_start()[I + 1]; ++k) {
       Eigen::Map<const Eigen::MatrixXd> AIJ(B.block(k), nb, nb);
       const int J = B.cols()[k];
-      worst = std::max(worst, (M.block(I * nb, J * nb, nb, nb) - AIJ).cwiseAbs().maxCoeff());
+      worst = quadapt_test::worst_of(worst, (M.block(I * nb, J * nb, nb, nb) - AIJ).cwiseAbs().maxCoeff());
       scale = std::max(scale, AIJ.cwiseAbs().maxCoeff());
     }
   return worst / scale;

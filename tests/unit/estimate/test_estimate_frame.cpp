@@ -8,6 +8,7 @@
 #include "estimate/estimate_frame.hpp"
 #include "estimate/interpolate.hpp"
 #include "test_util.hpp"
+#include "../worst.hpp"
 
 using namespace quadapt;
 
@@ -124,7 +125,7 @@ TEST_CASE("rotated front tanh(40(x cos a + y sin a - 0.6)): frames aligned withi
     std::vector<double> errs;
     for (int c = 0; c < m.num_cells(); ++c) {
       const double e = angle_diff_mod_pi(r.phi[c], a);
-      if (r.A1[c] >= 0.5 * amax) worst = std::max(worst, e);
+      if (r.A1[c] >= 0.5 * amax) worst = quadapt_test::worst_of(worst, e);
       if (r.A1[c] >= 0.1 * amax) errs.push_back(e);
       if (r.A1[c] > 0) CHECK(angle_diff_mod_pi(r.theta[c], r.phi[c] + M_PI / 2) < 1e-12);
     }

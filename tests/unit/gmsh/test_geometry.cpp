@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "gmsh/geometry.hpp"
+#include "../worst.hpp"
 
 using namespace quadapt;
 
@@ -27,7 +28,7 @@ TEST_CASE("open_geometry: the cylinder's named curves, its circle exact, closest
   double worst = 0, dworst = 0;
   for (int i = 0; i <= 50; ++i) {
     const double t = c.t0 + (c.t1 - c.t0) * i / 50;
-    worst = std::max(worst, std::abs(g->point(cyl[0], t).norm() - 0.5));
+    worst = quadapt_test::worst_of(worst, std::abs(g->point(cyl[0], t).norm() - 0.5));
     // c' against a central difference
     const double h = 1e-6;
     const Vec2 fd = (g->point(cyl[0], t + h) - g->point(cyl[0], t - h)) / (2 * h);

@@ -12,6 +12,7 @@
 #include "lpcvt/boundary_points.hpp"
 #include "lpcvt/energy.hpp"
 #include "mesh/mesh.hpp"
+#include "../worst.hpp"
 
 namespace lpcvt_test {
 
@@ -136,7 +137,7 @@ inline double fd_worst(const Background& bg, const std::vector<Vec2>& x, int nfi
       };
       fd[d] = (-at(2 * h) + 8 * at(h) - 8 * at(-h) + at(-2 * h)) / (12 * h);
     }
-    worst = std::max(worst, (fd - r.grad[i]).norm() / r.grad[i].norm());
+    worst = quadapt_test::worst_of(worst, (fd - r.grad[i]).norm() / r.grad[i].norm());
   }
   return worst;
 }

@@ -15,6 +15,7 @@
 #include "fem/basis.hpp"
 #include "mesh/curved.hpp"
 #include "mesh/validate.hpp"
+#include "../worst.hpp"
 
 using namespace quadapt;
 using curvedtest::curved_disk;
@@ -123,7 +124,7 @@ TEST_CASE("curved map: edge normals — closed-curve identities to rounding, rad
             CHECK(std::abs(nrm.norm() - 1) < 1e-14);
             sum_n += 0.5 * gauss8.w[k] * ds * nrm;
             flux += 0.5 * gauss8.w[k] * ds * x.dot(nrm);
-            worst = std::max(worst, std::acos(std::min(1.0, nrm.dot(x.normalized()))));
+            worst = quadapt_test::worst_of(worst, std::acos(std::min(1.0, nrm.dot(x.normalized()))));
           }
         }
       }

@@ -13,6 +13,7 @@
 
 #include <omp.h>
 #include "test_meshes.hpp"
+#include "../worst.hpp"
 
 using namespace quadapt;
 
@@ -107,7 +108,7 @@ TEST_CASE("smooth: in a constant metric T it is the physical smoothing of the me
     CHECK(sm.moves_full == sp.moves_full);
     CHECK(sm.moves_reduced == sp.moves_reduced);
     double worst = 0;
-    for (int v = 0; v < m.num_nodes(); ++v) worst = std::max(worst, (T * m.nodes[v] - mapped.nodes[v]).norm());
+    for (int v = 0; v < m.num_nodes(); ++v) worst = quadapt_test::worst_of(worst, (T * m.nodes[v] - mapped.nodes[v]).norm());
     CHECK(worst < 1e-12);
   }
 }
@@ -204,7 +205,7 @@ TEST_CASE("shape_smooth: a perturbed grid of the metric's unit squares is restor
   opt.tolerance = 1e-12;
   const auto st = shape_smooth(m, opt, [&](const Vec2&) { return T; });
   double worst = 0;
-  for (int v = 0; v < m.num_nodes(); ++v) worst = std::max(worst, (T * (m.nodes[v] - grid.nodes[v])).norm());
+  for (int v = 0; v < m.num_nodes(); ++v) worst = quadapt_test::worst_of(worst, (T * (m.nodes[v] - grid.nodes[v])).norm());
   MESSAGE("sweeps " << st.sweeps << ", worst metric distance to the grid " << worst);
   CHECK(worst < 1e-6);
   CHECK(quality_summary(m).inverted == 0);
@@ -243,7 +244,7 @@ TEST_CASE("shape_smooth: in a constant metric T it is the smoothing of the mesh 
     CHECK(sm.moves_full == sp.moves_full);
     CHECK(sm.moves_full > 0);
     double worst = 0;
-    for (int v = 0; v < m.num_nodes(); ++v) worst = std::max(worst, (T * m.nodes[v] - mapped.nodes[v]).norm());
+    for (int v = 0; v < m.num_nodes(); ++v) worst = quadapt_test::worst_of(worst, (T * m.nodes[v] - mapped.nodes[v]).norm());
     CHECK(worst < 1e-11);
   }
 }
@@ -357,7 +358,7 @@ TEST_CASE("shape_smooth: wall nodes displaced along their walls slide back to th
     opt.slide_walls = slide;
     const auto st = shape_smooth(m, opt, [&](const Vec2&) { return T; });
     double worst = 0;
-    for (int v = 0; v < m.num_nodes(); ++v) worst = std::max(worst, (T * (m.nodes[v] - grid.nodes[v])).norm());
+    for (int v = 0; v < m.num_nodes(); ++v) worst = quadapt_test::worst_of(worst, (T * (m.nodes[v] - grid.nodes[v])).norm());
     MESSAGE("slide " << slide << ": sweeps " << st.sweeps << ", wall nodes sliding " << st.sliding_nodes
                      << ", worst metric distance to the grid " << worst);
     CHECK(quality_summary(m).inverted == 0);
