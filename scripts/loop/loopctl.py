@@ -136,7 +136,17 @@ def cmd_params(args):
     if old is None:
         atomic_write(path, json.dumps(new, indent=1, sort_keys=True) + "\n")
         return
-    diff = [k for k in sorted(set(old) | set(new)) if old.get(k) != new.get(k)]
+    # the case is known by its contents (case_sha256), not its path: a moved project or another
+    # copy of the same file resumes; numbers by value (GROWTH=1.50 is 1.5)
+    def same(k):
+        a, b = old.get(k), new.get(k)
+        if k == "case" and "case_sha256" in old:
+            return True
+        try:
+            return a == b or float(a) == float(b)
+        except (TypeError, ValueError):
+            return False
+    diff = [k for k in sorted(set(old) | set(new)) if not same(k)]
     if diff:
         lines = ["  %s: was %r, now %r" % (k, old.get(k), new.get(k)) for k in diff]
         sys.exit("%s: this run directory was made with other parameters:\n%s\n"

@@ -128,6 +128,14 @@ fi
 if [ -z "$FF_BY" ]; then
   if [ "$MODE" = goal ]; then FF_BY=dwr; else FF_BY=A1h; fi
 fi
+if [ "$METHOD" = fixed-fraction ]; then  # a 1-component cell field of what refine reads
+  if [ "$MODE" = goal ]; then ffok="dwr"; else ffok="A1h rho B A1 A2 theta phi"; fi
+  [[ " $ffok " == *" $FF_BY "* ]] || die "FF_BY='$FF_BY': use one of: $ffok (MODE=$MODE)"
+fi
+if [ -n "$WINDOW" ]; then  # the pictures' close-up: x0,x1,y0,y1 with x0 < x1, y0 < y1
+  "$PY" -c 'import sys; v = [float(t) for t in sys.argv[1].split(",")]; assert len(v) == 4 and v[0] < v[1] and v[2] < v[3]' \
+    "$WINDOW" 2>/dev/null || die "WINDOW='$WINDOW': give x0,x1,y0,y1 with x0 < x1 and y0 < y1"
+fi
 
 # tools this loop needs
 tools=(dgsolve meshconvert)  # meshconvert: MESH is validated before anything is written
@@ -153,8 +161,16 @@ if [ "$MODE" = goal ] && [ "$METHOD" != uniform ]; then pmax=$((pmax - 1)); fi
 if [ "$P" -lt "$pmin" ] || [ "$P" -gt "$pmax" ]; then
   die "P=$P: the DG degree must be $pmin..$pmax$([ "$MODE" = goal ] && [ "$METHOD" != uniform ] && echo " in goal mode (the adjoint solves at p+1)")"
 fi
-# MESH: a valid all-quad mesh (meshconvert reads and validates it and writes nothing)
+# MESH: a valid all-quad mesh (meshconvert reads and validates it and writes nothing); with
+# GEOMETRY, one whose boundary snaps to it; CASE on MESH: one p = 1 solve written nowhere, which
+# checks what only the solver can (expressions, boundary names, the functional). Exit 1 (a valid
+# output, e.g. not converged) passes; 2 and 3 are bad input, refused before OUT exists.
 err="$(meshconvert -q "$MESH" -o /dev/null --require quads 2>&1)" || die "MESH: ${err#meshconvert: }"
+if [ -n "$GEOMETRY" ]; then
+  err="$(meshconvert -q "$MESH" --geometry "$GEOMETRY" --order 1 -o /dev/null 2>&1)" || die "GEOMETRY: ${err#meshconvert: }"
+fi
+rc=0; err="$(dgsolve -q "$MESH" -c "$CASE" -p 1 -o /dev/null 2>&1)" || rc=$?
+[ $rc -le 1 ] || die "CASE on MESH: ${err#dgsolve: }"
 if [ "$PICTURES" = yes ] && ! command -v meshplot >/dev/null 2>&1; then
   echo "loop: note: meshplot not found; the run will have no mesh pictures" >&2
 fi
@@ -180,6 +196,22 @@ OUT="$(cd "$OUT" && pwd)"
 CASE="$(cd "$(dirname "$CASE")" && pwd)/$(basename "$CASE")"
 exec 9>"$OUT/.lock"
 flock -n 9 || die "another loop is running in $OUT"
+# under the lock: no other loop writes here. Temporary files of writes that a signal cut short
+# (tools' .NAME.tmp-PID.ext, the loop's own NAME.tmp-PID) are removed; loop.done goes until the
+# steps have finished again.
+find "$OUT" \( -name '.*.tmp-[0-9]*' -o -name '*.tmp-[0-9]*' \) -type f -delete 2>/dev/null || true
+rm -f "$OUT/loop.done"
+# a signal to the loop: the running tool is stopped first (its temporary file is removed by the
+# next run), then the loop exits with 128 + N
+CHILD=""
+on_signal() {
+  trap - INT TERM HUP
+  if [ -n "$CHILD" ]; then kill -TERM "$CHILD" 2>/dev/null || true; wait "$CHILD" 2>/dev/null || true; fi
+  exit "$1"
+}
+trap 'on_signal 130' INT
+trap 'on_signal 143' TERM
+trap 'on_signal 129' HUP
 case_sum="$(sha256sum "$CASE" | cut -c1-16)"
 mesh_sum="$(sha256sum "$MESH" | cut -c1-16)"
 # STEPS and MAXDOFS only say where to stop: a finished run can be continued with more steps.
@@ -244,7 +276,12 @@ run_tool() {
   fi
   local t0 t1 rc=0
   t0=${EPOCHREALTIME/[.,]/}  # microseconds, without a process
-  "$@" 2>"$dir/$logname.log" || rc=$?
+  # in the background, waited for: bash runs a trap only between commands, so a foreground tool
+  # would keep running after a TERM to the loop (and hold the lock, fd 9, which it does not get)
+  "$@" 2>"$dir/$logname.log" 9>&- &
+  CHILD=$!
+  wait "$CHILD" || rc=$?
+  CHILD=""
   t1=${EPOCHREALTIME/[.,]/}
   if [ $rc -eq 0 ] || { [ $rc -eq 1 ] && [ -s "$out" ]; }; then
     # Warnings (a tool's "warning:" lines, and exit 1 = a valid output saved but a failure
@@ -262,9 +299,14 @@ run_tool() {
   printf '[%s] %s: %-14s %7s s\n' "$name" "${dir##*/}" "$logname" "$secs"
 }
 
-link_into() {  # link_into SRC DST: DST = SRC (hard link, else copy), atomically
+link_into() {  # link_into SRC DST: DST = SRC (hard link, else copy), atomically; SRC in OUT
   local tmp="$2.tmp-$$"
   ln -f "$1" "$tmp" 2>/dev/null || cp -f "$1" "$tmp"
+  mv -f "$tmp" "$2"
+}
+copy_into() {  # copy_into SRC DST: DST = a copy of SRC, atomically (the user's MESH: a hard link
+  local tmp="$2.tmp-$$"  # would let an edit of either change the other)
+  cp -f "$1" "$tmp"
   mv -f "$tmp" "$2"
 }
 
@@ -293,9 +335,9 @@ if [ -n "$GEOMETRY" ]; then
     fi
   }
   mkdir -p "$OUT/step-0/start"
-  if [ ! -s "$OUT/step-0/start/mesh.msh" ]; then link_into "$START" "$OUT/step-0/start/mesh.msh"; fi
+  if [ ! -s "$OUT/step-0/start/mesh.msh" ]; then copy_into "$START" "$OUT/step-0/start/mesh.msh"; fi
   on_geometry "$OUT/step-0/start" "$OUT/step-0/start/mesh.msh" "$OUT/step-0"
-elif [ ! -s "$OUT/step-0/mesh.msh" ]; then link_into "$START" "$OUT/step-0/mesh.msh"; fi
+elif [ ! -s "$OUT/step-0/mesh.msh" ]; then copy_into "$START" "$OUT/step-0/mesh.msh"; fi
 
 k=0
 last=0

@@ -81,6 +81,18 @@ rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --mesh te
 rc=0; "${MK[@]}" loop BIN="$PWD/bin" OUT=run-bad MESH=text.msh > log4i 2>&1 || rc=$?
 [ $rc -eq 2 ] && tail -n 1 log4i | grep -q '\] Error 2$' || fail "make, MESH text.msh: exit $rc, $(tail -n 2 log4i)"
 [ ! -e run-bad ] || fail "make, a bad MESH created the run directory"
+# what only the solver can check (an expression, boundary names) is checked before OUT exists too
+# (was: status 1 from step-0's dgsolve, and the OUT it left refused the corrected rerun)
+sed 's/"exact": "sin(pi\*x)\*sin(pi\*y) + x\*y"/"exact": "sin(pi*x)*sin(pi*y + x*y"/' smooth.json > typo.json
+grep -q 'sin(pi\*y + x' typo.json || fail "typo.json: the sed did not apply"
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --case typo.json --out run-bad > log4j 2>&1 || rc=$?
+[ $rc -eq 2 ] && grep -q "^loop: error: CASE on MESH: typo.json: " log4j || fail "CASE typo: exit $rc, $(cat log4j)"
+[ ! -e run-bad ] || fail "a CASE typo created the run directory"
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --method fixed-fraction --ff-by bogus --out run-bad > log4k 2>&1 || rc=$?
+[ $rc -eq 2 ] && grep -q "FF_BY='bogus': use one of: A1h" log4k || fail "FF_BY bogus: exit $rc, $(cat log4k)"
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --window 1,2 --out run-bad > log4l 2>&1 || rc=$?
+[ $rc -eq 2 ] && grep -q "WINDOW='1,2': give x0,x1,y0,y1" log4l || fail "WINDOW 1,2: exit $rc, $(cat log4l)"
+[ ! -e run-bad ] || fail "bad FF_BY or WINDOW created the run directory"
 
 # --- resume with a working refine: step-0 is not redone (same bytes, same times), the loop ends with 0
 sleep 1.1  # a recomputed file would get a later modification time
@@ -92,4 +104,36 @@ for f in saved/*; do
 done
 if grep -q 'step-0: dgsolve\|step-0: refine' log5; then fail "step-0's tools ran again: $(cat log5)"; fi
 [ -s run/loop.done ] && [ -s run/step-3/sol.msh ] || fail "the resumed loop did not finish"
+# step-0/mesh.msh is a copy of MESH, not a hard link (an edit of one changed the other, and a
+# rerun then solved another start mesh)
+[ "$(stat -c %i sq4.msh)" != "$(stat -c %i run/step-0/mesh.msh)" ] || fail "step-0/mesh.msh is MESH itself (hard link)"
+same_bytes sq4.msh run/step-0/mesh.msh
+# the parameters are compared by value and the case by its contents: GROWTH=1.50 and a copy of
+# the case elsewhere resume the run (were refused: text '1.50' != '1.5', another case path)
+mkdir elsewhere && cp -p smooth.json elsewhere/  # -p: an older mtime (a newer input is redone, as make)
+PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --case elsewhere/smooth.json --growth 1.50 --out run > log6 2>&1 ||
+  { cat log6; fail "GROWTH=1.50 or the moved case refused"; }
+if grep -q ': dgsolve\|: refine' log6; then fail "the equal parameters reran tools: $(cat log6)"; fi
+
+# --- a TERM to the loop stops the running tool too and leaves the lock free (was: the tool ran on,
+# orphaned, holding the lock, and a rerun said "another loop is running"); status 143
+rm -f bin/refine  # a symlink to the real refine now: writing through it would replace the tool
+cat > bin/refine <<SH
+#!/usr/bin/env bash
+case "\$*" in *step-1/*) echo \$\$ > "$PWD/slow.pid"; exec sleep 60 ;; esac
+exec "$QUADAPT_BIN_DIR/refine" "\$@"
+SH
+chmod +x bin/refine
+PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --out run-term > log7 2>&1 &
+loop_pid=$!
+for i in $(seq 1 200); do [ -s slow.pid ] && break; sleep 0.05; done
+[ -s slow.pid ] || fail "the slow tool did not start: $(cat log7)"
+kill -TERM "$loop_pid"
+rc=0; wait "$loop_pid" || rc=$?
+[ $rc -eq 143 ] || fail "TERM: loop status $rc (want 143)"
+sleep 0.2
+if kill -0 "$(cat slow.pid)" 2>/dev/null; then kill "$(cat slow.pid)"; fail "the running tool outlived the loop"; fi
+rm bin/refine && ln -s "$QUADAPT_BIN_DIR/refine" bin/refine
+PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --out run-term > log8 2>&1 || { cat log8; fail "resume after TERM"; }
+[ -s run-term/loop.done ] || fail "no loop.done after the resume"
 echo "ok: a failing step stops the loop with status 1 (make: 2, 'Error 1'), earlier steps intact, resume finishes"
