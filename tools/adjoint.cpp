@@ -7,6 +7,7 @@
 #include "adjoint/dwr.hpp"
 #include "case/case.hpp"
 #include "cli/tool.hpp"
+#include "dg/degree.hpp"
 #include "core/format.hpp"
 #include "dg/solve.hpp"
 #include "io/msh.hpp"
@@ -81,6 +82,7 @@ int main(int argc, char** argv) {
       v.allow_curved = true;  // the DWR uses only the DG discretisation, which integrates on the curved map
       mesh = read_valid_msh(in, v);
       U = read_solution_field(mesh, field, in, p);
+      check_degree(p, in + ": the solution's degree p =", kMaxAdjointDegree);  // the fine space is p + 1
       cs = load_case(case_path);
       if (!cs.has_functional())
         throw InputError(case_path, "the case has no functional; add \"functional\": {\"boundary\": NAME}");

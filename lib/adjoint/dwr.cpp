@@ -113,7 +113,7 @@ DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U
   check_case_finite(cs, mesh);
   const int nc = mesh.num_cells();
   // the fine space has degree p + 1, which the DG library must support
-  check_degree(p, "adjoint: the solution's degree p =", kMaxAdjointDegree);
+  check_degree(p, "the solution's degree p =", kMaxAdjointDegree);
   const long long nbc = static_cast<long long>(p + 1) * (p + 1);
   if (U.size() != nbc * nc)
     throw InputError("adjoint: solution vector of size " + std::to_string(U.size()) + " does not match degree " +

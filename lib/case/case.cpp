@@ -69,11 +69,26 @@ bool Case::is_dirichlet(const std::string& group_name) const {
 
 Case parse_case(const std::string& text, const std::string& path) {
   json j;
+  // a key given twice in one object: nlohmann keeps the last silently, so a typo'd copy of
+  // "exact" would win unseen; found while parsing (a stack of the keys seen per open object)
+  std::vector<std::vector<std::string>> seen;
+  std::string duplicate;
+  const json::parser_callback_t dup = [&](int, json::parse_event_t ev, json& parsed) {
+    if (ev == json::parse_event_t::object_start) seen.emplace_back();
+    else if (ev == json::parse_event_t::object_end && !seen.empty()) seen.pop_back();
+    else if (ev == json::parse_event_t::key && !seen.empty()) {
+      const std::string k = parsed.get<std::string>();
+      if (std::find(seen.back().begin(), seen.back().end(), k) != seen.back().end() && duplicate.empty()) duplicate = k;
+      seen.back().push_back(k);
+    }
+    return true;
+  };
   try {
-    j = json::parse(text);
+    j = json::parse(text, dup);
   } catch (const json::exception& e) {
     throw InputError(path, std::string("not valid JSON: ") + e.what());
   }
+  if (!duplicate.empty()) throw InputError(path, "key '" + duplicate + "' is given twice in one object (the last would win unseen)");
   if (!j.is_object()) throw InputError(path, "a case file must be a JSON object");
   static const std::vector<std::string> known = {"name",      "description", "diffusion", "advection",
                                                  "exact",     "dirichlet",   "neumann",   "functional"};
@@ -115,6 +130,21 @@ Case parse_case(const std::string& text, const std::string& path) {
   }
   if (cs.diffusion.isZero(0.0) && cs.advection.isZero(0.0))
     throw InputError(path, "both 'diffusion' and 'advection' are zero: there is no PDE to solve");
+  {
+    // D of rank 1 (semi-definite, not zero): along its null direction v only advection carries
+    // u; with c . v = 0 nothing does, and the solver returned an arbitrary u there (exit 0,
+    // L2 error 5 for a solution of size 1; D = [[1,0],[0,0]], c = 0)
+    const Eigen::Matrix2d& D = cs.diffusion;
+    const double scale = D.cwiseAbs().maxCoeff();
+    if (scale > 0 && std::abs(D(0, 0) * D(1, 1) - D(0, 1) * D(1, 0)) <= 1e-12 * scale * scale) {
+      const Eigen::Vector2d v = D(0, 0) >= D(1, 1) ? Eigen::Vector2d(-D(0, 1), D(0, 0)).normalized()
+                                                   : Eigen::Vector2d(D(1, 1), -D(1, 0)).normalized();
+      if (!(std::abs(cs.advection.dot(v)) > 1e-12 * cs.advection.norm()) || cs.advection.isZero(0.0))
+        throw InputError(path, "key 'diffusion' is singular and 'advection' has no component along its null direction (" +
+                                   std::to_string(v.x()) + ", " + std::to_string(v.y()) +
+                                   "): u is not determined along it; make D positive definite or add advection there");
+    }
+  }
 
   if (!j.contains("exact")) throw InputError(path, "missing key 'exact' (the exact solution u(x, y))");
   if (!j["exact"].is_string()) throw InputError(path, "key 'exact' must be an expression string");
@@ -143,6 +173,11 @@ Case parse_case(const std::string& text, const std::string& path) {
       }
     }
   }
+  // pure diffusion fixes u only through Dirichlet data: without any, u is determined up to a
+  // constant and the solver returned one at random (exit 0, an error 300x the solution)
+  if (!cs.dirichlet_all && cs.dirichlet.empty() && cs.advection.isZero(0.0))
+    throw InputError(path, "key 'dirichlet' lists no boundary and there is no advection: u would be determined only "
+                           "up to a constant; name at least one Dirichlet boundary");
   if (j.contains("neumann")) {
     const json& d = j["neumann"];
     if (!d.is_object()) throw InputError(path, "key 'neumann' must be a map {boundary name: expression}");
@@ -205,6 +240,26 @@ void check_case_finite(const Case& cs, const Mesh& mesh) {
   };
   for (const Vec2& x : mesh.nodes) check(x);
   for (int c = 0; c < mesh.num_cells(); ++c) check(cell_centroid(mesh, c));
+  // boundary data: at the ends and midpoint of every edge of its boundary (before the solve: a
+  // NaN right-hand side used to run the whole solver chain, then blame "a singular system")
+  auto check_data = [&](const std::vector<BoundaryData>& data, const char* key) {
+    for (const BoundaryData& bd : data)
+      for (const BoundaryEdge& e : mesh.boundary) {
+        if (e.group < 0 || e.group >= static_cast<int>(mesh.groups.size()) || mesh.groups[e.group].name != bd.boundary)
+          continue;
+        const Vec2 a = mesh.nodes[e.v[0]], b = mesh.nodes[e.v[1]];
+        for (const Vec2& x : {a, Vec2(0.5 * (a + b)), b}) {
+          const double v = evaluate(bd.expr, x.x(), x.y());
+          if (std::isfinite(v)) continue;
+          char at[96];
+          std::snprintf(at, sizeof at, "(%.3e, %.3e)", x.x(), x.y());
+          throw InputError(cs.path, std::string("key '") + key + "." + bd.boundary + "': '" + bd.source +
+                                        "' is not finite at " + at + " (a point of that boundary)");
+        }
+      }
+  };
+  check_data(cs.dirichlet_data, "dirichlet");
+  check_data(cs.neumann_data, "neumann");
 }
 
 ExactSolution::ExactSolution(const Case& cs) {

@@ -115,4 +115,14 @@ rc=$?
 set -e
 [ $rc = 2 ] || fail "overwriting the input exited $rc"
 cmp -s "$T/sol1.msh" "$T/keep.msh" || fail "the input was modified"
+# a solution of degree 8 (the fine space would be 9): one line naming the file, nothing written
+# (was "adjoint: adjoint: the solution's degree p = 8 ...", no file)
+dgsolve -q "$T/sq8.msh" -c "$T/smooth.json" -p 8 -o "$T/sol8.msh"
+set +e
+adjoint "$T/sol8.msh" -c "$T/smooth.json" -o "$T/dwr8.msh" 2>"$T/err8"
+rc=$?
+set -e
+[ $rc = 2 ] || fail "p = 8: exit $rc"
+grep -q "^adjoint: $T/sol8.msh: the solution's degree p = 8 is out of range (1..7)$" "$T/err8" || fail "p = 8: $(cat "$T/err8")"
+[ ! -e "$T/dwr8.msh" ] || fail "p = 8: output written"
 echo "adjoint CLI: OK"

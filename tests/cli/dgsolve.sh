@@ -104,6 +104,23 @@ expect_fail "'outlet'" "$T/sq4.msh" "$T/badfun.json" 1
 mkcase notjson '{"exact": "x", '
 expect_fail "not valid JSON" "$T/sq4.msh" "$T/notjson.json" 1
 expect_fail "triangle" "$T/tri.msh" "$CASES/smooth.json" 1
+# problems whose solution is not determined, refused before the solve (each exited 0 with an
+# arbitrary u: L2 error 314 and 5.4 for solutions of size 1.5 and 1)
+mkcase nodir '{"exact": "x*y", "diffusion": [[1, 0], [0, 1]], "dirichlet": []}'
+expect_fail "lists no boundary and there is no advection" "$T/sq4.msh" "$T/nodir.json" 2
+mkcase semidef '{"exact": "sin(x)*cos(y)", "diffusion": [[1, 0], [0, 0]], "dirichlet": ["bottom", "top"]}'
+expect_fail "'diffusion' is singular and 'advection' has no component along its null direction" "$T/sq4.msh" "$T/semidef.json" 2
+# with advection along D's null direction the problem is parabolic there, and solved
+mkcase parab '{"exact": "sin(x)*cos(y)", "diffusion": [[1, 0], [0, 0]], "advection": [0, 1]}'
+dgsolve -q "$T/sq4.msh" -c "$T/parab.json" -p 2 -o "$T/parabolic.msh"
+# a key given twice (the last won unseen); boundary data that is not finite (named, before the
+# solve; was "the DG solution is not finite (singular system?)" after running every solver)
+mkcase dupkey '{"exact": "x*y", "diffusion": [[1, 0], [0, 1]], "exact": "x"}'
+expect_fail "key 'exact' is given twice" "$T/sq4.msh" "$T/dupkey.json" 1
+mkcase nandata '{"exact": "x*y", "diffusion": [[1, 0], [0, 1]], "dirichlet": ["left"], "neumann": {"right": "log(y-0.5)"}}'
+expect_fail "key 'neumann.right': 'log(y-0.5)' is not finite at" "$T/sq4.msh" "$T/nandata.json" 1
+mkcase infdata '{"exact": "x*y", "diffusion": [[1, 0], [0, 1]], "dirichlet": {"left": "1/0", "right": "0"}}'
+expect_fail "key 'dirichlet.left': '1/0' is not finite at" "$T/sq4.msh" "$T/infdata.json" 1
 expect_fail "out of range" "$T/sq4.msh" "$CASES/smooth.json" 0
 expect_fail "out of range" "$T/sq4.msh" "$CASES/smooth.json" 9
 expect_fail "unknown linear solver" "$T/sq4.msh" "$CASES/smooth.json" 1 --solver cholesky
