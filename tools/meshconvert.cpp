@@ -1,7 +1,5 @@
 // meshconvert IN.msh -o OUT.(msh|vtu) [--require quads|triangles]: read any supported MSH, validate,
 // write MSH 4.1 ASCII or VTK XML for ParaView (with every field).
-#include <filesystem>
-
 #include "cli/tool.hpp"
 #include "io/msh.hpp"
 #include "io/vtu.hpp"
@@ -63,9 +61,7 @@ int main(int argc, char** argv) {
     tool.input(in);
     if (!geometry.empty()) tool.input(geometry);
     tool.output(out);
-    // the extension picks the format: refuse one we do not write (a .vtk would get MSH text)
-    if (const std::string ext = std::filesystem::path(out).extension().string(); !ext.empty() && ext != ".msh" && ext != ".vtu")
-      throw InputError(out, "meshconvert writes .msh (MSH 4.1) or .vtu (VTK XML for ParaView), not '" + ext + "'");
+    mesh_file_format(out);  // unknown extension -> error before any work
     if (order > 1 && geometry.empty()) throw InputError("", "--order " + std::to_string(order) + " needs --geometry");
     std::unique_ptr<BoundaryGeometry> g;
     if (!geometry.empty()) {

@@ -139,7 +139,7 @@ Case parse_case(const std::string& text, const std::string& path) {
     if (scale > 0 && std::abs(D(0, 0) * D(1, 1) - D(0, 1) * D(1, 0)) <= 1e-12 * scale * scale) {
       const Eigen::Vector2d v = D(0, 0) >= D(1, 1) ? Eigen::Vector2d(-D(0, 1), D(0, 0)).normalized()
                                                    : Eigen::Vector2d(D(1, 1), -D(1, 0)).normalized();
-      if (!(std::abs(cs.advection.dot(v)) > 1e-12 * cs.advection.norm()) || cs.advection.isZero(0.0))
+      if (!(std::abs(cs.advection.dot(v)) > 1e-12 * cs.advection.norm()))  // c = 0 included
         throw InputError(path, "key 'diffusion' is singular and 'advection' has no component along its null direction (" +
                                    std::to_string(v.x()) + ", " + std::to_string(v.y()) +
                                    "): u is not determined along it; make D positive definite or add advection there");

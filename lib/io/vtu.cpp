@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <ostream>
 
 #include "core/atomic_file.hpp"
@@ -180,9 +181,15 @@ void write_vtu(const Mesh& mesh, const std::string& path) {
   atomic_write(path, [&](std::ostream& out) { write_vtu(mesh, out, path); });
 }
 
+MeshFileFormat mesh_file_format(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".vtu") return MeshFileFormat::Vtu;
+  if (ext.empty() || ext == ".msh") return MeshFileFormat::Msh;
+  throw InputError(path, "a mesh is written as .msh (MSH 4.1) or .vtu (VTK XML for ParaView), not '" + ext + "'");
+}
+
 void write_mesh_file(const Mesh& mesh, const std::string& path) {
-  const std::string ext = ".vtu";
-  if (path.size() >= ext.size() && path.compare(path.size() - ext.size(), ext.size(), ext) == 0)
+  if (mesh_file_format(path) == MeshFileFormat::Vtu)
     write_vtu(mesh, path);
   else
     write_msh(mesh, path);

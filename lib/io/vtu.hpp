@@ -44,7 +44,13 @@ void write_vtu(const Mesh& mesh, const std::string& path);
 /// Stream variant (`path_for_messages` names the file in errors).
 void write_vtu(const Mesh& mesh, std::ostream& out, const std::string& path_for_messages = "");
 
-/// Writes `path` as .vtu when its name ends in ".vtu", else as MSH 4.1 (write_msh).
+enum class MeshFileFormat { Msh, Vtu };
+/// The format a mesh output's name asks for: ".vtu" VTK XML; ".msh", no extension, "-" or a
+/// device MSH 4.1. Any other extension (".vtk" would otherwise get MSH text) throws InputError
+/// naming the path — call it before any work, as picture_format for pictures.
+MeshFileFormat mesh_file_format(const std::string& path);
+
+/// Writes `path` in mesh_file_format(path): VTK XML (write_vtu) or MSH 4.1 (write_msh).
 void write_mesh_file(const Mesh& mesh, const std::string& path);
 
 }  // namespace quadapt
