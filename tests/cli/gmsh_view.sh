@@ -15,11 +15,11 @@ grep -q '^View\[0\].AdaptVisualizationGrid = 1;$' "$T/sol.msh.opt" || fail "no A
 # Gmsh reads FILE.opt by itself on open (batch mode '-': parse the files, then exit)
 printf 'Printf("adapt=%%g level=%%g", View[0].AdaptVisualizationGrid, View[0].MaxRecursionLevel);\n' > "$T/chk.geo"
 out=$(cd "$T" && gmsh sol.msh chk.geo - 2>&1)
-echo "$out" | grep -q 'adapt=1 level=3' || fail "Gmsh did not apply sol.msh.opt: $(echo "$out" | grep adapt)"
+grep -q 'adapt=1 level=3' <<<"$out" || fail "Gmsh did not apply sol.msh.opt: $(echo "$out" | grep adapt)"
 # without the file Gmsh's default is blocky (0): the check above can fail
 mv "$T/sol.msh.opt" "$T/keep.opt"
 out=$(cd "$T" && gmsh sol.msh chk.geo - 2>&1)
-echo "$out" | grep -q 'adapt=0' || fail "Gmsh's default changed: $(echo "$out" | grep adapt)"
+grep -q 'adapt=0' <<<"$out" || fail "Gmsh's default changed: $(echo "$out" | grep adapt)"
 mv "$T/keep.opt" "$T/sol.msh.opt"
 # the other tools that keep u (meshconvert, adjoint) write one too; a mesh without u gets none
 meshconvert -q "$T/sol.msh" -o "$T/copy.msh"

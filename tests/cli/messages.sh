@@ -28,22 +28,22 @@ done
 for args in "--bogus" "$S/examples/meshes/square16.msh -c $S/examples/cases/smooth.json -p 1 -o $T/x.msh --bogus=3"; do
   rc=0; msg=$(dgsolve $args 2>&1) || rc=$?
   [ $rc -eq 2 ] || fail "dgsolve $args: exit $rc"
-  echo "$msg" | grep -q 'unknown option --bogus' || fail "unknown option not named: $msg"
+  grep -q 'unknown option --bogus' <<<"$msg" || fail "unknown option not named: $msg"
 done
 [ ! -e "$T/x.msh" ] || fail "output written despite an unknown option"
 rc=0; msg=$(lpcvt -q --bogus 2>&1) || rc=$?
-echo "$msg" | grep -q 'unknown option --bogus' || fail "lpcvt: $msg"
+grep -q 'unknown option --bogus' <<<"$msg" || fail "lpcvt: $msg"
 
 # --- no absurd bounds in range errors
 M=$S/examples/meshes/square16.msh
 for cmd in "dgsolve --threads -1 $M" "recombine $M -o $T/y.msh --topology-passes -5" "bamgquad $M -o $T/y.msh --edge-factor -1"; do
   msg=$($cmd 2>&1 || true)
-  echo "$msg" | grep -q -E '[0-9]{13,}' && fail "$cmd: long number in: $msg"
+  grep -q -E '[0-9]{13,}' <<<"$msg" && fail "$cmd: long number in: $msg"
   [ ${#msg} -lt 200 ] || fail "$cmd: message of ${#msg} characters: $msg"
-  echo "$msg" | grep -q -E 'must be >=? 0 \(got -[0-9]+\)' || fail "$cmd: $msg"
+  grep -q -E 'must be >=? 0 \(got -[0-9]+\)' <<<"$msg" || fail "$cmd: $msg"
 done
 msg=$(dgsolve --threads -1 x 2>&1 || true)
-echo "$msg" | grep -q 'must be >= 0 (got -1)' || fail "threads: $msg"
+grep -q 'must be >= 0 (got -1)' <<<"$msg" || fail "threads: $msg"
 
 # --- values in %.3e: a polynomial case, errors at rounding level (used to print 0.000000)
 python3 "$MK" 2 "$T/sq2.msh"
@@ -58,18 +58,18 @@ grep -q -E 'estimate -?[0-9]\.[0-9]{3}e[-+][0-9]{2}, true error [0-9]\.[0-9]{3}e
 grep -q '0\.000000' "$T/dg.log" "$T/adj.log" && fail "fixed-point zeros in the logs"
 
 # --- one degree range
-dgsolve --help | grep -q 'degree P (1\.\.8)' || fail "dgsolve --help range"
+help=$(dgsolve --help); grep -q 'degree P (1\.\.8)' <<<"$help" || fail "dgsolve --help range"
 rc=0; msg=$(dgsolve "$T/sq2.msh" -c "$T/poly.json" -p 9 -o "$T/p9.msh" 2>&1) || rc=$?
-[ $rc -eq 2 ] && echo "$msg" | grep -q 'out of range (1\.\.8)' || fail "p=9: exit $rc: $msg"
+[ $rc -eq 2 ] && grep -q 'out of range (1\.\.8)' <<<"$msg" || fail "p=9: exit $rc: $msg"
 dgsolve -q "$T/sq2.msh" -c "$T/poly.json" -p 8 -o "$T/p8.msh"
 rc=0; msg=$(adjoint "$T/p8.msh" -c "$T/poly.json" -o "$T/d8.msh" 2>&1) || rc=$?
-[ $rc -eq 2 ] && echo "$msg" | grep -q 'out of range (1\.\.7)' || fail "adjoint p=8: exit $rc: $msg"
+[ $rc -eq 2 ] && grep -q 'out of range (1\.\.7)' <<<"$msg" || fail "adjoint p=8: exit $rc: $msg"
 mk() { make -s -f "$S/Makefile.cases" check CASE=sshock BIN="$QUADAPT_BIN_DIR" "$@" 2>&1; }
 msg=$(mk P=9) && fail "make check P=9 passed: $msg"
-echo "$msg" | grep -q 'P=9: the DG degree must be 1..8' || fail "check P=9: $msg"
-mk P=8 | grep -q 'inputs OK' || fail "check P=8"
+grep -q 'P=9: the DG degree must be 1..8' <<<"$msg" || fail "check P=9: $msg"
+msg=$(mk P=8); grep -q 'inputs OK' <<<"$msg" || fail "check P=8"
 msg=$(mk P=8 MODE=goal) && fail "goal P=8 passed"
-echo "$msg" | grep -q 'must be 1..7 in goal mode' || fail "goal P=8: $msg"
+grep -q 'must be 1..7 in goal mode' <<<"$msg" || fail "goal P=8: $msg"
 
 # --- loop warnings: a wrapped lpcvt that warns (exit 0) and one that exits 1 with a valid output
 mkdir "$T/bin"
@@ -100,19 +100,19 @@ print("messages: convergence.csv warnings:", rows[0]["warnings"])
 PY
 # --- options that would be silently ignored are refused (exit 2, the reason named)
 rc=0; msg=$(lpcvt --analytic saddle --orientation boundary -o "$T/o.msh" 2>&1) || rc=$?
-[ $rc -eq 2 ] && echo "$msg" | grep -q -- "--orientation boundary needs a frame" || fail "lpcvt --analytic --orientation boundary: exit $rc: $msg"
+[ $rc -eq 2 ] && grep -q -- "--orientation boundary needs a frame" <<<"$msg" || fail "lpcvt --analytic --orientation boundary: exit $rc: $msg"
 [ ! -e "$T/o.msh" ] || fail "lpcvt wrote an output after refusing its options"
 python3 "$S/tests/cli/lpcvt_frame.py" "$T/f.msh" --n 4
 rc=0; msg=$(lpcvt "$T/f.msh" --boundary-norm 0.5 -o "$T/o.msh" 2>&1) || rc=$?
-[ $rc -eq 2 ] && echo "$msg" | grep -q -- "--boundary-norm: 0.5 is neither 0 (the L_p exponent) nor in \[1, 64\]" || fail "lpcvt --boundary-norm 0.5: exit $rc: $msg"
+[ $rc -eq 2 ] && grep -q -- "--boundary-norm: 0.5 is neither 0 (the L_p exponent) nor in \[1, 64\]" <<<"$msg" || fail "lpcvt --boundary-norm 0.5: exit $rc: $msg"
 [ ! -e "$T/o.msh" ] || fail "lpcvt wrote an output after refusing --boundary-norm"
 lpcvt -q "$T/f.msh" -o "$T/t.msh" && recombine -q "$T/t.msh" -o "$T/q.msh"
 rc=0; msg=$(recombine "$T/t.msh" -o "$T/qb.msh" --matching blossom --interior-bonus 0.2 2>&1) || rc=$?
-[ $rc -eq 2 ] && echo "$msg" | grep -q -- "--interior-bonus applies to the metric matching only" || fail "recombine --matching blossom --interior-bonus: exit $rc: $msg"
+[ $rc -eq 2 ] && grep -q -- "--interior-bonus applies to the metric matching only" <<<"$msg" || fail "recombine --matching blossom --interior-bonus: exit $rc: $msg"
 [ ! -e "$T/qb.msh" ] || fail "recombine wrote an output after refusing --interior-bonus"
 rc=0; msg=$(quadsmooth "$T/q.msh" -o "$T/s.msh" --corner-metric cell 2>&1) || rc=$?
-[ $rc -eq 2 ] && echo "$msg" | grep -q -- "--corner-metric applies to the shape fit only" || fail "quadsmooth --corner-metric without --frame: exit $rc: $msg"
+[ $rc -eq 2 ] && grep -q -- "--corner-metric applies to the shape fit only" <<<"$msg" || fail "quadsmooth --corner-metric without --frame: exit $rc: $msg"
 rc=0; msg=$(quadsmooth "$T/q.msh" -o "$T/s.msh" --walls fixed 2>&1) || rc=$?
-[ $rc -eq 2 ] && echo "$msg" | grep -q -- "--walls applies to the shape fit only" || fail "quadsmooth --walls without --frame: exit $rc: $msg"
+[ $rc -eq 2 ] && grep -q -- "--walls applies to the shape fit only" <<<"$msg" || fail "quadsmooth --walls without --frame: exit $rc: $msg"
 
 echo "messages: ok"

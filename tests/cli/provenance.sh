@@ -9,15 +9,15 @@ trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 v=$(dgsolve --version)
 echo "$v"
-echo "$v" | head -1 | grep -q '^dgsolve (quadapt) [0-9]' || fail "first line"
-echo "$v" | grep -q '^build [A-Za-z]*, ' || fail "no build type"
-echo "$v" | grep -q '^libraries: gmsh [0-9.]*, CGAL [0-9.]*, Eigen [0-9.]*' || fail "no library versions"
+[[ "${v%%$'\n'*}" =~ ^dgsolve\ \(quadapt\)\ [0-9] ]] || fail "first line"
+grep -q '^build [A-Za-z]*, ' <<<"$v" || fail "no build type"
+grep -q '^libraries: gmsh [0-9.]*, CGAL [0-9.]*, Eigen [0-9.]*' <<<"$v" || fail "no library versions"
 if git -C "$S" rev-parse HEAD >/dev/null 2>&1; then
   head=$(git -C "$S" rev-parse HEAD)
-  echo "$v" | grep -q "^commit $head" || fail "--version does not name HEAD $head (rebuild?)"
+  grep -q "^commit $head" <<<"$v" || fail "--version does not name HEAD $head (rebuild?)"
 fi
 for t in adjoint bamgquad estimate-frame lpcvt meshconvert meshplot meshquality quadsmooth recombine refine size-solve; do
-  $t --version | grep -q '^commit ' || fail "$t --version has no commit"
+  tv=$($t --version); grep -q '^commit ' <<<"$tv" || fail "$t --version has no commit"
 done
 cp "$S/examples/meshes/square16.msh" "$T/m.msh"
 dgsolve -q "$T/m.msh" -c "$S/examples/cases/smooth.json" -p 1 -o "$T/sol.msh"
