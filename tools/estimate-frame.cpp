@@ -70,7 +70,12 @@ int main(int argc, char** argv) {
       if (!exact.empty()) {
         check_degree(p_exact, "-p");
         Expr e = parse_expression(exact);
-        sol.set_field(interpolate_dg(sol, p_exact, [&](double x, double y) { return evaluate(e, x, y); }, opt.field));
+        sol.set_field(interpolate_dg(sol, p_exact, [&](double x, double y) {
+          const double v = evaluate(e, x, y);
+          if (!std::isfinite(v))
+            throw InputError("--exact '" + exact + "' is not finite at (" + sci(x) + ", " + sci(y) + ") on " + in);
+          return v;
+        }, opt.field));
         tool.option("exact", exact);
         tool.option("degree", p_exact);
       }

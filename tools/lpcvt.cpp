@@ -1,12 +1,14 @@
 // lpcvt: points by L_p-CVT energy minimisation conforming to a frame field, then a constrained
 // Delaunay triangulation (thesis ch. 4, Algorithms 1-3). See docs/lpcvt.md; the work is
 // lib/lpcvt/run.hpp.
+#include <cmath>
 #include <cstring>
 #include <string>
 
 #include "cli/parse_errors.hpp"
 #include "cli/tool.hpp"
 #include "core/atomic_file.hpp"
+#include "core/format.hpp"
 #include "dg/degree.hpp"
 #include "io/msh.hpp"
 #include "gmsh/geometry.hpp"
@@ -185,6 +187,14 @@ int main(int argc, char** argv) {
       write_msh(r.mesh, out);
       if (!frame_out.empty()) write_frame(meshed_frame(bg), frame_out);
     }
+    // a frame that cannot be met on this domain (an element longer than the domain is wide, in
+    // some direction) gives a count far from the frame's: say so, the report alone is easy to miss
+    const double target = tool.report().value("target_cells", 0.0);
+    const double expected = tool.report().value("expected_cells", 0.0);
+    if (target > 0 && (expected > 1.5 * target || expected < target / 1.5))
+      tool.log("warning: about " + std::to_string(std::lround(expected)) + " cells after recombine for the frame's " +
+               std::to_string(std::lround(target)) + " (ratio " + sci(expected / target) +
+               "): the frame's sizes cannot be met on this domain (elements longer than the domain in some direction?)");
     if (!r.converged) {
       tool.log("warning: not converged (" + r.stop + "); the mesh is valid but the points are not optimal");
       if (strict) throw PartialFailure("not converged: " + r.stop + " (mesh written)");

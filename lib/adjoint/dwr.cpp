@@ -63,6 +63,9 @@ Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, con
   const int nb = (pf + 1) * (pf + 1);
   if (A.block_size() != nb || A.block_rows() != mesh.num_cells() || g.size() != A.rows())
     throw Error("solve_adjoint: matrix / right-hand side do not match degree " + std::to_string(pf) + " on the mesh");
+  // exact (a power of two); 1 unless A's entries are far out of floating-point range (linear_solver.hpp)
+  Eigen::VectorXd gs = g;
+  scale_system(A, gs);
   LinearSolverOptions o = opt.solver;
   const bool flow = opt.ordering == AdjointOrdering::Flow || (opt.ordering == AdjointOrdering::Auto && pure_advection);
   if (flow && o.block_order.empty()) o.block_order = downwind_order(mesh, -c);
@@ -72,7 +75,7 @@ Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, con
     auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd x;
     double res = 0;
-    if (solve_transposed_block_sweep(A, o.block_order, g, x, &res) && res <= 10 * o.rtol) {
+    if (solve_transposed_block_sweep(A, o.block_order, gs, x, &res) && res <= 10 * o.rtol) {
       if (info) {
         *info = LinearSolveInfo();
         info->solver = "block-sweep";
@@ -92,11 +95,11 @@ Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, con
   const bool iterative = kind != LinearSolverKind::UmfPack && kind != LinearSolverKind::SparseLU &&
                          kind != LinearSolverKind::Auto;
   try {
-    return solve_linear(At, g, o, info);
+    return solve_linear(At, gs, o, info);
   } catch (const NumericalError&) {
     if (!iterative || !opt.fallback_direct) throw;
     o.kind = LinearSolverKind::UmfPack;
-    Eigen::VectorXd x = solve_linear(At, g, o, info);
+    Eigen::VectorXd x = solve_linear(At, gs, o, info);
     if (info) {
       info->solver = linear_solver_name(kind) + "->umfpack";
       info->fallback = true;

@@ -7,6 +7,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 namespace quadapt {
 
@@ -116,10 +117,19 @@ Case parse_case(const std::string& text, const std::string& path) {
       for (int c = 0; c < 2; ++c) cs.diffusion(r, c) = constant_value(d[r][c], path, "diffusion");
     const Eigen::Matrix2d& D = cs.diffusion;
     if (!D.allFinite()) throw InputError(path, "key 'diffusion' has a non-finite entry");
+    // beyond this the adjoint's products of residual and adjoint over- or underflow (measured:
+    // D = 1e200 I gave sum_eta = 0); the solver itself is scaled (linear_solver.hpp system_scale)
+    for (int r = 0; r < 2; ++r)
+      for (int c = 0; c < 2; ++c)
+        if (D(r, c) != 0 && !(std::abs(D(r, c)) >= 1e-100 && std::abs(D(r, c)) <= 1e100))
+          throw InputError(path, "key 'diffusion': entry " + sci(D(r, c)) +
+                                     " is outside 1e-100..1e100 in magnitude (write 0, or rescale the problem)");
     double scale = D.cwiseAbs().maxCoeff();
     if (std::abs(D(0, 1) - D(1, 0)) > 1e-14 * scale)
       throw InputError(path, "key 'diffusion' must be symmetric ([[a, b], [b, c]])");
-    if (D(0, 0) < 0 || D(1, 1) < 0 || D(0, 0) * D(1, 1) - D(0, 1) * D(1, 0) < -1e-14 * scale * scale)
+    // determinant of D / scale: D's own overflows at 1e200 and underflows at 1e-300
+    const Eigen::Matrix2d Dn = scale > 0 ? Eigen::Matrix2d(D / scale) : D;
+    if (D(0, 0) < 0 || D(1, 1) < 0 || Dn(0, 0) * Dn(1, 1) - Dn(0, 1) * Dn(1, 0) < -1e-14)
       throw InputError(path, "key 'diffusion' must be positive semi-definite");
   }
   if (j.contains("advection")) {
@@ -127,25 +137,11 @@ Case parse_case(const std::string& text, const std::string& path) {
     if (!c.is_array() || c.size() != 2) throw InputError(path, "key 'advection' must be an array [cx, cy]");
     for (int r = 0; r < 2; ++r) cs.advection(r) = constant_value(c[r], path, "advection");
     if (!cs.advection.allFinite()) throw InputError(path, "key 'advection' has a non-finite entry");
+    for (int r = 0; r < 2; ++r)
+      if (cs.advection(r) != 0 && !(std::abs(cs.advection(r)) >= 1e-100 && std::abs(cs.advection(r)) <= 1e100))
+        throw InputError(path, "key 'advection': entry " + sci(cs.advection(r)) +
+                                   " is outside 1e-100..1e100 in magnitude (write 0, or rescale the problem)");
   }
-  if (cs.diffusion.isZero(0.0) && cs.advection.isZero(0.0))
-    throw InputError(path, "both 'diffusion' and 'advection' are zero: there is no PDE to solve");
-  {
-    // D of rank 1 (semi-definite, not zero): along its null direction v only advection carries
-    // u; with c . v = 0 nothing does, and the solver returned an arbitrary u there (exit 0,
-    // L2 error 5 for a solution of size 1; D = [[1,0],[0,0]], c = 0)
-    const Eigen::Matrix2d& D = cs.diffusion;
-    const double scale = D.cwiseAbs().maxCoeff();
-    if (scale > 0 && std::abs(D(0, 0) * D(1, 1) - D(0, 1) * D(1, 0)) <= 1e-12 * scale * scale) {
-      const Eigen::Vector2d v = D(0, 0) >= D(1, 1) ? Eigen::Vector2d(-D(0, 1), D(0, 0)).normalized()
-                                                   : Eigen::Vector2d(D(1, 1), -D(1, 0)).normalized();
-      if (!(std::abs(cs.advection.dot(v)) > 1e-12 * cs.advection.norm()))  // c = 0 included
-        throw InputError(path, "key 'diffusion' is singular and 'advection' has no component along its null direction (" +
-                                   std::to_string(v.x()) + ", " + std::to_string(v.y()) +
-                                   "): u is not determined along it; make D positive definite or add advection there");
-    }
-  }
-
   if (!j.contains("exact")) throw InputError(path, "missing key 'exact' (the exact solution u(x, y))");
   if (!j["exact"].is_string()) throw InputError(path, "key 'exact' must be an expression string");
   cs.exact_source = j["exact"].get<std::string>();
@@ -153,6 +149,24 @@ Case parse_case(const std::string& text, const std::string& path) {
     cs.exact = parse_expression(cs.exact_source);
   } catch (const InputError& e) {
     throw InputError(path, std::string("key 'exact': ") + e.what());
+  }
+
+  if (cs.diffusion.isZero(0.0) && cs.advection.isZero(0.0))
+    throw InputError(path, "both 'diffusion' and 'advection' are zero: there is no PDE to solve");
+  {
+    // D of rank 1 (semi-definite, not zero): along its null direction v only advection carries
+    // u; with c . v = 0 nothing does, and the solver returned an arbitrary u there (exit 0,
+    // L2 error 5 for a solution of size 1; D = [[1,0],[0,0]], c = 0)
+    const double scale = cs.diffusion.cwiseAbs().maxCoeff();
+    const Eigen::Matrix2d D = scale > 0 ? Eigen::Matrix2d(cs.diffusion / scale) : cs.diffusion;  // scale-free
+    if (scale > 0 && std::abs(D(0, 0) * D(1, 1) - D(0, 1) * D(1, 0)) <= 1e-12) {
+      const Eigen::Vector2d v = D(0, 0) >= D(1, 1) ? Eigen::Vector2d(-D(0, 1), D(0, 0)).normalized()
+                                                   : Eigen::Vector2d(D(1, 1), -D(1, 0)).normalized();
+      if (!(std::abs(cs.advection.dot(v)) > 1e-12 * cs.advection.norm()))  // c = 0 included
+        throw InputError(path, "key 'diffusion' is singular and 'advection' has no component along its null direction (" +
+                                   sci(v.x()) + ", " + sci(v.y()) +
+                                   "): u is not determined along it; make D positive definite or add advection there");
+    }
   }
 
   if (j.contains("dirichlet")) {
@@ -204,22 +218,34 @@ Case parse_case(const std::string& text, const std::string& path) {
 Case load_case(const std::string& path) { return parse_case(read_text_file(path), path); }
 
 void check_case_boundaries(const Case& cs, const Mesh& mesh) {
+  // edges per name (two groups may share a name; all of them count, as in the solver)
+  std::vector<std::pair<std::string, long>> edges;
+  for (const auto& g : mesh.groups)
+    if (std::find_if(edges.begin(), edges.end(), [&](const auto& e) { return e.first == g.name; }) == edges.end())
+      edges.emplace_back(g.name, 0);
+  for (const BoundaryEdge& e : mesh.boundary)
+    if (e.group >= 0 && e.group < static_cast<int>(mesh.groups.size()))
+      for (auto& [name, n] : edges)
+        if (name == mesh.groups[e.group].name) ++n;
   auto list = [&] {
     std::string s;
-    for (const auto& g : mesh.groups) s += (s.empty() ? "" : ", ") + g.name;
+    for (const auto& [name, n] : edges)
+      if (n > 0) s += (s.empty() ? "" : ", ") + name;
     return s.empty() ? std::string("none") : s;
   };
-  for (const std::string& n : cs.dirichlet)
-    if (mesh.find_group(n) < 0)
-      throw InputError(cs.path, "Dirichlet boundary '" + n + "' is not a boundary group of the mesh (groups: " +
-                                    list() + ")");
-  for (const BoundaryData& bd : cs.neumann_data)
-    if (mesh.find_group(bd.boundary) < 0)
-      throw InputError(cs.path, "Neumann boundary '" + bd.boundary + "' is not a boundary group of the mesh (groups: " +
-                                    list() + ")");
-  if (cs.has_functional() && mesh.find_group(cs.functional_boundary) < 0)
-    throw InputError(cs.path, "functional boundary '" + cs.functional_boundary +
-                                  "' is not a boundary group of the mesh (groups: " + list() + ")");
+  // A name the mesh knows with no edge (a physical group on the wrong curve, or $PhysicalNames
+  // without its line elements) would silently drop that Dirichlet data or make J = 0.
+  auto check = [&](const std::string& n, const std::string& what) {
+    auto it = std::find_if(edges.begin(), edges.end(), [&](const auto& e) { return e.first == n; });
+    if (it == edges.end())
+      throw InputError(cs.path, what + " '" + n + "' is not a boundary group of the mesh (groups: " + list() + ")");
+    if (it->second == 0)
+      throw InputError(cs.path, what + " '" + n + "' is a boundary group of the mesh without any edge (a physical "
+                                "curve on the wrong entity?); groups with edges: " + list());
+  };
+  for (const std::string& n : cs.dirichlet) check(n, "Dirichlet boundary");
+  for (const BoundaryData& bd : cs.neumann_data) check(bd.boundary, "Neumann boundary");
+  if (cs.has_functional()) check(cs.functional_boundary, "functional boundary");
 }
 
 void check_case_finite(const Case& cs, const Mesh& mesh) {

@@ -42,6 +42,10 @@ class BlockSparseMatrix {
   /// All block values (num_blocks * nb * nb); release_values() frees them.
   const HugeVector<double>& values() const { return values_; }
   void release_values() { HugeVector<double>().swap(values_); }
+  /// Multiplies every value by s (the pattern stays).
+  void scale(double s) {
+    for (long long k = 0; k < num_blocks() * nb_ * nb_; ++k) values_.data()[k] *= s;
+  }
   /// Index k of block (I, J), or -1.
   long long find(int I, int J) const;
 

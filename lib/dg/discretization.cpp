@@ -225,8 +225,13 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
     }
   }
   if (cs.has_functional()) {
-    functional_group_ = mesh.find_group(cs.functional_boundary);
-    if (functional_group_ < 0)
+    // every group of that name (a file may give two groups one name; Dirichlet data above
+    // match by name too)
+    functional_groups_.assign(ng, 0);
+    for (int gi = 0; gi < ng; ++gi)
+      if (mesh.groups[gi].name == cs.functional_boundary) functional_groups_[gi] = 1;
+    has_functional_ = mesh.find_group(cs.functional_boundary) >= 0;
+    if (!has_functional_)
       throw InputError(cs.path, "functional boundary '" + cs.functional_boundary +
                                     "' is not a boundary group of the mesh");
   }
@@ -572,12 +577,12 @@ void boundary_trace(const Face& f, const std::vector<double>& gll, double t, dou
 }  // namespace
 
 double DGDiscretization::functional(const Eigen::VectorXd& U) const {
-  if (functional_group_ < 0) return 0;
+  if (!has_functional_) return 0;
   Rule1D g = gauss_legendre(p_ + 2);
   std::vector<double> phi(nb_);
   double J = 0;
   for (const Face& f : topo_.faces) {
-    if (!f.is_boundary() || f.group != functional_group_) continue;
+    if (!on_functional_boundary(f)) continue;
     const double* Uc = U.data() + static_cast<long long>(f.cell[0]) * nb_;
     for (size_t q = 0; q < g.x.size(); ++q) {
       const double t = 0.5 * (g.x[q] + 1);
@@ -595,11 +600,11 @@ double DGDiscretization::functional(const Eigen::VectorXd& U) const {
 
 Eigen::VectorXd DGDiscretization::functional_gradient(const Eigen::VectorXd& U) const {
   VectorXd dJ = VectorXd::Zero(num_dofs());
-  if (functional_group_ < 0) return dJ;
+  if (!has_functional_) return dJ;
   Rule1D g = gauss_legendre(p_ + 2);
   std::vector<double> phi(nb_);
   for (const Face& f : topo_.faces) {
-    if (!f.is_boundary() || f.group != functional_group_) continue;
+    if (!on_functional_boundary(f)) continue;
     const long long off = static_cast<long long>(f.cell[0]) * nb_;
     for (size_t q = 0; q < g.x.size(); ++q) {
       const double t = 0.5 * (g.x[q] + 1);
@@ -617,13 +622,13 @@ Eigen::VectorXd DGDiscretization::functional_gradient(const Eigen::VectorXd& U) 
 }
 
 double DGDiscretization::functional_exact() const {
-  if (functional_group_ < 0) return 0;
+  if (!has_functional_) return 0;
   // Composite 20-point Gauss on 8 sub-intervals of every face.
   Rule1D g = gauss_legendre(20);
   const int sub = 8;
   double J = 0;
   for (const Face& f : topo_.faces) {
-    if (!f.is_boundary() || f.group != functional_group_) continue;
+    if (!on_functional_boundary(f)) continue;
     for (int k = 0; k < sub; ++k)
       for (size_t q = 0; q < g.x.size(); ++q) {
         double t = (k + 0.5 * (g.x[q] + 1)) / sub;

@@ -98,7 +98,7 @@ class DGDiscretization {
   std::vector<double> cell_l2_errors_squared(const Eigen::VectorXd& U) const;
 
   /// Whether the case has a functional (J = integral of u^2 over the named boundary).
-  bool has_functional() const { return functional_group_ >= 0; }
+  bool has_functional() const { return has_functional_; }
   /// J(u_h) = int_Gamma u_h^2 ds over the case's functional boundary (exact for the polynomial).
   double functional(const Eigen::VectorXd& U) const;
   /// dJ/dU (num_dofs): entries int_Gamma 2 u_h phi_a ds.
@@ -128,7 +128,11 @@ class DGDiscretization {
   Topology topo_;
   std::unique_ptr<ExactSolution> exact_;
   std::unique_ptr<Impl> impl_;
-  int functional_group_ = -1;
+  bool has_functional_ = false;
+  std::vector<char> functional_groups_;  ///< per mesh group: named as the functional's boundary
+  bool on_functional_boundary(const Face& f) const {
+    return f.is_boundary() && f.group >= 0 && functional_groups_[f.group];
+  }
   std::vector<char> face_dirichlet_;  ///< per face (boundary faces): Dirichlet data?
 };
 

@@ -256,6 +256,34 @@ bool solve_iterative(LinearSolverKind kind, const SparseMatrixCSC& A, const Bloc
 
 }  // namespace
 
+double system_scale(double max_abs) {
+  if (!(max_abs > 0) || !std::isfinite(max_abs)) return 1;
+  const int e = std::ilogb(max_abs);
+  if (e >= -64 && e <= 64) return 1;
+  return std::ldexp(1.0, -e);
+}
+
+double scale_system(SparseMatrixCSC& A, Eigen::VectorXd& b) {
+  const double s = system_scale(A.nonZeros() > 0 ? A.coeffs().cwiseAbs().maxCoeff() : 0.0);
+  if (s != 1) {
+    A.coeffs() *= s;
+    b *= s;
+  }
+  return s;
+}
+
+double scale_system(BlockSparseMatrix& B, Eigen::VectorXd& b) {
+  double m = 0;
+  const long long n = B.num_blocks() * B.block_size() * B.block_size();
+  for (long long k = 0; k < n; ++k) m = std::max(m, std::abs(B.values().data()[k]));
+  const double s = system_scale(m);
+  if (s != 1) {
+    B.scale(s);
+    b *= s;
+  }
+  return s;
+}
+
 bool uses_compressed_columns(LinearSolverKind kind) {
   return kind == LinearSolverKind::UmfPack || kind == LinearSolverKind::SparseLU ||
          kind == LinearSolverKind::BicgstabILUT;

@@ -67,6 +67,16 @@ Eigen::VectorXd solve_linear(const SparseMatrixCSC& A, const Eigen::VectorXd& b,
 /// solvers and bicgstab-ilut convert it to compressed columns first.
 Eigen::VectorXd solve_linear(const BlockSparseMatrix& B, const Eigen::VectorXd& b, const LinearSolverOptions& opt,
                              LinearSolveInfo* info = nullptr);
+/// The factor 2^k that brings the largest absolute matrix entry `max_abs` into [2^-64, 2^64],
+/// or 1 when it is there already (or is 0 or not finite). Scaling A x = b by a power of two is
+/// exact in floating point, so a system already in range solves to the same bytes; one far out
+/// of it (a case with D = 1e100 I or 1e-100 I) would otherwise overflow or underflow the block
+/// ILU's single-precision factors ("singular pivot block") although its solution is that of
+/// D = I.
+double system_scale(double max_abs);
+/// Scales A (or B) and b by system_scale of A's largest entry; returns the factor (1: unchanged).
+double scale_system(SparseMatrixCSC& A, Eigen::VectorXd& b);
+double scale_system(BlockSparseMatrix& B, Eigen::VectorXd& b);
 /// Whether `kind` works on compressed columns (direct solvers, bicgstab-ilut) rather than blocks.
 bool uses_compressed_columns(LinearSolverKind kind);
 

@@ -55,6 +55,10 @@ DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& o
   // is arbitrary: 44 -> 15 iterations on examples/meshes/unstructured_square.msh.
   if (so.block_order.empty())
     so.block_order = downwind_order(mesh, cs.advection.isZero(0.0) ? Eigen::Vector2d(1e-3, 1.0) : cs.advection);
+  if (csc)
+    scale_system(A, b);
+  else
+    scale_system(B, b);
   r.U = csc ? solve_linear(A, b, so, &r.solve) : solve_linear(B, b, so, &r.solve);
   r.t_solve = seconds_since(t0);
   if (!r.U.allFinite()) throw NumericalError("the DG solution is not finite (singular system?)");

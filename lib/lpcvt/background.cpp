@@ -235,7 +235,10 @@ Background Background::from_frame(const Frame& f, double scale, const std::strin
     throw InputError(path, e.what());
   }
   bg.scale_ = scale;
-  for (IntegrationCell& ic : bg.cells_) ic.M = scale * f.M[ic.mesh_cell];
+  // without PHiLiP's reflections (det M < 0; the same M^T M): a reflected frame meshes as its
+  // unreflected twin, byte for byte (the lattice start and the filters see M itself)
+  const std::vector<Mat2> oriented = f.oriented();
+  for (IntegrationCell& ic : bg.cells_) ic.M = scale * oriented[ic.mesh_cell];
   bg.finish();
   return bg;
 }

@@ -23,6 +23,8 @@ std::string list(const std::vector<std::string>& names) {
   return s;
 }
 
+constexpr const char* kClockwise = "inverted (ordered clockwise";
+
 /// Geometric check of one cell: "" when valid, else the problem.
 /// Corner Jacobian at vertex k: cross(v[k+1] - v[k], v[k-1] - v[k]) (4 det J of the bilinear
 /// map at that corner for a quad, 2 * area for a triangle). Negative: inverted. Zero (below
@@ -34,12 +36,22 @@ std::string cell_problem(const Mesh& m, int c) {
     longest2 = std::max(longest2, (m.nodes[cell.v[(k + 1) % cell.nv]] - m.nodes[cell.v[k]]).squaredNorm());
   const double tol = 1e-12 * longest2;
   if (longest2 == 0) return "degenerate: all its vertices coincide";
+  int negative = 0, first_negative = -1;
+  double twice_area = 0;  // signed (shoelace): > 0 counter-clockwise
   for (int k = 0; k < cell.nv; ++k) {
     const Vec2& p = m.nodes[cell.v[k]];
-    Vec2 a = m.nodes[cell.v[(k + 1) % cell.nv]] - p;
+    const Vec2& q = m.nodes[cell.v[(k + 1) % cell.nv]];
+    twice_area += p.x() * q.y() - q.x() * p.y();
+    Vec2 a = q - p;
     Vec2 b = m.nodes[cell.v[(k + cell.nv - 1) % cell.nv]] - p;
-    double j = a.x() * b.y() - a.y() * b.x();
-    if (j < -tol) return "inverted: negative Jacobian at corner " + std::to_string(k + 1) + " " + point_text(p);
+    if (a.x() * b.y() - a.y() * b.x() < -tol && negative++ == 0) first_negative = k;
+  }
+  if (negative > 0) {
+    const std::string corner = std::to_string(first_negative + 1) + " " + point_text(m.nodes[cell.v[first_negative]]);
+    if (negative == cell.nv) return std::string(kClockwise) + ": every corner's Jacobian is negative)";
+    if (negative == 1 && twice_area > tol)  // a dart: one reflex corner, the outline counter-clockwise
+      return "non-convex: reflex angle at corner " + corner + " (a quad must be convex)";
+    return "inverted: negative Jacobian at corner " + corner;
   }
   if (cell_area(m, c) <= tol) return "degenerate: zero area";
   for (int k = 0; k < cell.nv; ++k) {
@@ -85,16 +97,20 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
          " quadrilaterals, " + std::to_string(ntri) + " triangles)");
   }
 
-  int bad = 0, first_bad = -1;
+  int bad = 0, first_bad = -1, clockwise = 0;
   std::string first_problem;
   for (int c = 0; c < nc; ++c) {
     std::string p = cell_problem(m, c);
     if (p.empty()) continue;
+    if (p.rfind(kClockwise, 0) == 0) ++clockwise;
     if (bad++ == 0) {
       first_bad = c;
       first_problem = p;
     }
   }
+  if (clockwise == nc)
+    fail("every cell is ordered clockwise; quadapt needs counter-clockwise cells: reverse the mesh (Gmsh: "
+         "ReverseMesh Surface{...}; in the .geo, or a counter-clockwise Curve Loop)");
   if (bad > 0)
     fail(cell_label(m, first_bad) + " is " + first_problem +
          (bad > 1 ? " (" + std::to_string(bad) + " invalid cells in all)" : ""));

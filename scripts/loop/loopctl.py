@@ -5,7 +5,8 @@
                                             KEY may be dotted: timings.total)
   loopctl.py summary SOL.json              one line: cells, dofs, l2_error, functional_error
   loopctl.py show convergence.csv [COL...] aligned table of some columns
-  loopctl.py check-case CASE.json           exit 1 with a message unless CASE is a JSON object
+  loopctl.py check-case CASE.json [MODE]    exit 1 with a message unless CASE is a JSON object
+                                            (with an exact solution, and a functional when MODE is goal)
   loopctl.py params OUT/loop.json KEY=VAL.. write/compare the run's parameters (exit 1 on a
                                             mismatch, naming the differing keys)
   loopctl.py table OUT [--last K]           assemble OUT/convergence.csv from the step reports
@@ -127,6 +128,9 @@ def cmd_check_case(args):
         sys.exit("%s: a case file must be a JSON object" % path)
     if "exact" not in d:
         sys.exit("%s: a case file needs an 'exact' solution expression (docs/design.md §3)" % path)
+    if len(args) > 1 and args[1] == "goal" and "functional" not in d:
+        sys.exit("%s: MODE=goal needs a functional to adapt for; add \"functional\": {\"boundary\": NAME} "
+                 "(docs/cases.md), or use MODE=feature" % path)
 
 
 def cmd_params(args):

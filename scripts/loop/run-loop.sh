@@ -85,7 +85,7 @@ if [ ! -f "$CASE" ]; then
   avail="$(cd "$root/examples/cases" 2>/dev/null && ls *.json 2>/dev/null | sed 's/\.json$//' | tr '\n' ' ' || true)"
   die "unknown CASE '$CASE': no such file${avail:+ (shipped cases: $avail)}"
 fi
-msg="$(ctl check-case "$CASE" 2>&1)" || die "$msg"
+msg="$(ctl check-case "$CASE" "$MODE" 2>&1)" || die "$msg"
 [ -n "$MESH" ] || die "MESH is not set (the start mesh, e.g. MESH=examples/meshes/square16.msh)"
 [ -f "$MESH" ] || die "MESH '$MESH': no such file"
 is_uint "$P" || die "P='$P': the DG degree must be an integer"

@@ -88,6 +88,12 @@ grep -q 'sin(pi\*y + x' typo.json || fail "typo.json: the sed did not apply"
 rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --case typo.json --out run-bad > log4j 2>&1 || rc=$?
 [ $rc -eq 2 ] && grep -q "^loop: error: CASE on MESH: typo.json: " log4j || fail "CASE typo: exit $rc, $(cat log4j)"
 [ ! -e run-bad ] || fail "a CASE typo created the run directory"
+# goal mode with a case that has no functional: refused before OUT exists (it ran step 0's solve
+# and estimate, then stopped at the adjoint with status 1, and a rerun could only fail again)
+echo '{ "diffusion": [[1, 0], [0, 1]], "advection": [1, 0.5], "exact": "sin(pi*x)*sin(pi*y) + x*y" }' > nofunc.json
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --case nofunc.json --mode goal --method fixed-fraction --out run-bad > log4n 2>&1 || rc=$?
+[ $rc -eq 2 ] && grep -q "nofunc.json: MODE=goal needs a functional" log4n || fail "goal without a functional: exit $rc, $(cat log4n)"
+[ ! -e run-bad ] || fail "goal without a functional created the run directory"
 rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --method fixed-fraction --ff-by bogus --out run-bad > log4k 2>&1 || rc=$?
 [ $rc -eq 2 ] && grep -q "FF_BY='bogus': use one of: A1h" log4k || fail "FF_BY bogus: exit $rc, $(cat log4k)"
 rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --window 1,2 --out run-bad > log4l 2>&1 || rc=$?

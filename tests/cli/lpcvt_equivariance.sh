@@ -88,4 +88,35 @@ for name, back in maps.items():
           f"irregular {100 * qb['irregular_interior_share']:.2f} %, metric angle deviation "
           f"{qb['metric']['quad_angle_deviation_mean_deg']:.3f} (original {qa['metric']['quad_angle_deviation_mean_deg']:.3f})")
 PY
+# A reflected frame (PHiLiP writes det M < 0 on most cells: here the second row of every Vinv
+# negated, the same M^T M) is the same frame: lpcvt's output must be the same bytes. (Before the
+# background dropped the reflection, the points differed: the lattice start and the filters saw M.)
+$PY - "$T/base.msh" "$T/refl.msh" <<'PY'
+import sys
+src, dst = sys.argv[1], sys.argv[2]
+lines = open(src).read().split("\n")
+out, i, n_neg = [], 0, 0
+while i < len(lines):
+    out.append(lines[i])
+    if lines[i] == "$ElementData" and lines[i + 2] == '"Vinv"':
+        # header: 1, "Vinv", 1 real tag, time, 3 int tags (step, components, count)
+        hdr = lines[i + 1:i + 9]
+        out.extend(hdr)
+        count = int(hdr[7])
+        for k in range(count):
+            v = lines[i + 9 + k].split()
+            for j in (4, 5, 6):  # row 2 of the row-major 3x3 (after the tag)
+                v[j] = repr(-float(v[j]))
+            out.append(" ".join(v))
+            n_neg += 1
+        i += 9 + count
+        continue
+    i += 1
+open(dst, "w").write("\n".join(out))
+if n_neg == 0:
+    sys.exit("FAIL: no Vinv rows reflected")
+PY
+lpcvt -q "$T/refl.msh" -o "$T/refl-tri.msh" --seed 3
+cmp -s "$T/base-tri.msh" "$T/refl-tri.msh" || { echo "FAIL: the reflected frame gives other points than the frame" >&2; exit 1; }
+echo "ok reflected frame: the same bytes"
 echo "PASS: lpcvt_equivariance"

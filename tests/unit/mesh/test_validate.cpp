@@ -65,12 +65,26 @@ TEST_CASE("each problem is named") {
     m.nodes[5] = Vec2(0.9, 0.9);  // interior node (1,1) of the 4x4 node grid pushed past its neighbours
     std::string p = problem(m);
     CHECK(has(p, "m.msh: cell"));
-    CHECK(has(p, "is inverted: negative Jacobian at corner"));
+    // the cells around the node: darts (one reflex corner, counter-clockwise outline) and
+    // folded ones; the first invalid one is named
+    CHECK((has(p, "is non-convex: reflex angle at corner") || has(p, "is inverted: negative Jacobian at corner")));
+  }
+  SUBCASE("a dart: one reflex corner is named as such") {
+    Mesh m = make_structured_quads(2, 2);
+    m.nodes[4] = Vec2(0.2, 0.2);  // centre node into cell 1, past its diagonal: cell 1 is a dart
+    const std::string p = problem(m);
+    CHECK(has(p, "m.msh: cell 1 (centroid"));
+    CHECK(has(p, "is non-convex: reflex angle at corner 3 (0.2, 0.2) (a quad must be convex)"));
+  }
+  SUBCASE("every cell clockwise: one message saying so") {
+    Mesh m = make_structured_quads(2, 2);
+    for (Cell& c : m.cells) std::swap(c.v[1], c.v[3]);
+    CHECK(has(problem(m), "m.msh: every cell is ordered clockwise; quadapt needs counter-clockwise cells"));
   }
   SUBCASE("a reversed quad") {
     Mesh m = make_structured_quads(2, 2);
     std::swap(m.cells[0].v[1], m.cells[0].v[3]);
-    CHECK(has(problem(m), "m.msh: cell 1 (centroid (0.25, 0.25)) is inverted"));
+    CHECK(has(problem(m), "m.msh: cell 1 (centroid (0.25, 0.25)) is inverted (ordered clockwise"));
   }
   SUBCASE("a degenerate quad") {
     Mesh m = make_structured_quads(2, 2);
