@@ -133,6 +133,13 @@ def cmd_check_case(args):
                  "(docs/cases.md), or use MODE=feature" % path)
 
 
+# The tools' defaults of the options the loop records only when set (run-loop.sh): giving the
+# default explicitly is the same run (size-solve --max-anisotropy, --gradation, --r-max, --c-max;
+# lpcvt --phases; quadsmooth --walls). The --help of each tool states them.
+PARAM_DEFAULTS = {"max_anisotropy": "25", "size_gradation": "0", "r_max": "20", "c_max": "4",
+                  "phases": "0", "walls": "slide", "fit_frame": "raw"}
+
+
 def cmd_params(args):
     path, pairs = args[0], args[1:]
     new = dict(p.split("=", 1) for p in pairs)
@@ -146,13 +153,19 @@ def cmd_params(args):
         a, b = old.get(k), new.get(k)
         if k == "case" and "case_sha256" in old:
             return True
+        # an option the run left at its tool's default, now given as that default, or the reverse
+        if k in PARAM_DEFAULTS:
+            a = PARAM_DEFAULTS[k] if a is None else a
+            b = PARAM_DEFAULTS[k] if b is None else b
         try:
             return a == b or float(a) == float(b)
         except (TypeError, ValueError):
             return False
     diff = [k for k in sorted(set(old) | set(new)) if not same(k)]
     if diff:
-        lines = ["  %s: was %r, now %r" % (k, old.get(k), new.get(k)) for k in diff]
+        def shown(v):
+            return "(not set)" if v is None else repr(v)
+        lines = ["  %s: was %s, now %s" % (k, shown(old.get(k)), shown(new.get(k))) for k in diff]
         sys.exit("%s: this run directory was made with other parameters:\n%s\n"
                  "  use another OUT, or delete the directory to start again" % (path, "\n".join(lines)))
 
@@ -276,4 +289,8 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except BrokenPipeError:  # `loopctl.py show RUN | head`: the reader left; no traceback
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        sys.exit(1)

@@ -120,6 +120,33 @@ mkdir elsewhere && cp -p smooth.json elsewhere/  # -p: an older mtime (a newer i
 PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --case elsewhere/smooth.json --growth 1.50 --out run > log6 2>&1 ||
   { cat log6; fail "GROWTH=1.50 or the moved case refused"; }
 if grep -q ': dgsolve\|: refine' log6; then fail "the equal parameters reran tools: $(cat log6)"; fi
+# an option given as its tool's default is the run's own setting (was refused: "max_anisotropy:
+# was None, now '25'"); another value is refused, naming both
+PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --max-anisotropy 25 --out run > log6b 2>&1 ||
+  { cat log6b; fail "MAX_ANISOTROPY=25 (the default) refused"; }
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --max-anisotropy 30 --out run > log6c 2>&1 || rc=$?
+[ $rc -eq 2 ] && grep -q "max_anisotropy: was (not set), now '30'" log6c || fail "MAX_ANISOTROPY=30 on a default run: exit $rc, $(cat log6c)"
+# loopctl's table of those defaults is the tools' own (their --help)
+python3 - "$S/scripts/loop" "$QUADAPT_BIN_DIR" <<'PYEOF' || fail "loopctl.PARAM_DEFAULTS differs from the tools' defaults"
+import re, subprocess, sys
+sys.path.insert(0, sys.argv[1])
+import loopctl
+def default(tool, opt):
+    h = subprocess.run([sys.argv[2] + "/" + tool, "--help"], capture_output=True, text=True).stdout
+    return re.search(re.escape(opt) + r" [A-Z:]*[^=\n]*=(\S+)", h).group(1)
+want = {"max_anisotropy": default("size-solve", "--max-anisotropy"), "size_gradation": default("size-solve", "--gradation"),
+        "r_max": default("size-solve", "--r-max"), "c_max": default("size-solve", "--c-max"),
+        "phases": default("lpcvt", "--phases"), "walls": default("quadsmooth", "--walls"), "fit_frame": "raw"}
+def norm(v):
+    try:
+        return float(v)
+    except ValueError:
+        return v
+bad = {k: (loopctl.PARAM_DEFAULTS.get(k), v) for k, v in want.items() if norm(loopctl.PARAM_DEFAULTS.get(k, "?")) != norm(v)}
+if bad or set(loopctl.PARAM_DEFAULTS) != set(want):
+    sys.exit("FAIL: loopctl PARAM_DEFAULTS vs the tools: %r" % bad)
+print("ok: loopctl's defaults are the tools'", want)
+PYEOF
 
 # --- a TERM to the loop stops the running tool too and leaves the lock free (was: the tool ran on,
 # orphaned, holding the lock, and a rerun said "another loop is running"); status 143
