@@ -238,7 +238,8 @@ void check_case_boundaries(const Case& cs, const Mesh& mesh) {
   auto check = [&](const std::string& n, const std::string& what) {
     auto it = std::find_if(edges.begin(), edges.end(), [&](const auto& e) { return e.first == n; });
     if (it == edges.end())
-      throw InputError(cs.path, what + " '" + n + "' is not a boundary group of the mesh (groups: " + list() + ")");
+      throw InputError(cs.path, what + " '" + n + "' is not a boundary group of the mesh (groups: " + list() + ")" +
+                                    (n == "all" ? "; every boundary is written \"dirichlet\": \"all\", a string, not a list" : ""));
     if (it->second == 0)
       throw InputError(cs.path, what + " '" + n + "' is a boundary group of the mesh without any edge (a physical "
                                 "curve on the wrong entity?); groups with edges: " + list());

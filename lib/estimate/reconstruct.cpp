@@ -65,6 +65,7 @@ PatchReconstructor::PatchReconstructor(const Mesh& mesh, const std::vector<doubl
     ld[q] = basis.deriv(rule_.x[q]);
   }
   const int nc = mesh.num_cells();
+  length_ = domain_length(mesh);
   qdata_.resize(static_cast<size_t>(nc) * nq_ * 6);
 #pragma omp parallel for schedule(static)
   for (int c = 0; c < nc; ++c) {
@@ -97,6 +98,13 @@ PatchReconstructor::PatchReconstructor(const Mesh& mesh, const std::vector<doubl
   }
 }
 
+double domain_length(const Mesh& mesh) {
+  double area = 0;
+  for (int c = 0; c < mesh.num_cells(); ++c) area += std::abs(cell_area(mesh, c));
+  if (!(area > 0) || !std::isfinite(area)) return 1;
+  return std::exp2(std::floor(0.5 * std::log2(area) + 0.5));  // ties up, so L(2^k x) = 2^k L(x)
+}
+
 PatchPolynomial PatchReconstructor::reconstruct(int cell, const std::vector<int>& patch) const {
   PatchPolynomial poly;
   poly.degree = n_;
@@ -119,17 +127,18 @@ PatchPolynomial PatchReconstructor::reconstruct(int cell, const std::vector<int>
     const double* q = qdata_.data() + static_cast<size_t>(c) * nq_ * 6;
     for (int k = 0; k < nq_; ++k, q += 6, r += 3) {
       const double s = (q[0] - poly.center.x()) * invH, t = (q[1] - poly.center.y()) * invH, sw = q[2];
+      const double swL = sw * length_;  // the gradient rows' weight: L^2 in the squared norm
       powers(s, n_, ps.data());
       powers(t, n_, pt.data());
       for (int m = 0; m < nm; ++m) {
         const int i = exps_[m].first, j = exps_[m].second;
         G(r, m) = sw * ps[i] * pt[j];
-        G(r + 1, m) = i > 0 ? sw * i * ps[i - 1] * pt[j] * invH : 0.0;
-        G(r + 2, m) = j > 0 ? sw * j * ps[i] * pt[j - 1] * invH : 0.0;
+        G(r + 1, m) = i > 0 ? swL * i * ps[i - 1] * pt[j] * invH : 0.0;
+        G(r + 2, m) = j > 0 ? swL * j * ps[i] * pt[j - 1] * invH : 0.0;
       }
       f[r] = sw * q[3];
-      f[r + 1] = sw * q[4];
-      f[r + 2] = sw * q[5];
+      f[r + 1] = swL * q[4];
+      f[r + 2] = swL * q[5];
     }
   }
   Eigen::HouseholderQR<Eigen::MatrixXd> qr(G);

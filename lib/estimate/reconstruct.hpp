@@ -5,8 +5,16 @@
 // mesh/topology.hpp), the enriched polynomial ũ ∈ P^n(D(k)) (total degree n, normally n = p+1)
 // solves
 //     <ũ, φ>_{H1(D(k))} = <u_h, φ>_{H1(D(k))}   for all φ ∈ P^n(D(k)),
-// with the broken, physical-coordinate H1 inner product <u,v> = Σ_cells ∫ (u v + ∇u·∇v) dx
-// (exactly the thesis's / PHiLiP's choice). Integrals use an (n+1)-point Gauss–Legendre tensor
+// with the broken H1 inner product <u,v> = Σ_cells ∫ (u v + L² ∇u·∇v) dx, L = domain_length(mesh),
+// the power of two nearest to sqrt(domain area). L makes the fit nearly independent of the unit
+// of length (exactly for scalings by powers of two; within the effect of a factor sqrt 2 in L
+// otherwise — metres to millimetres is 1000 = 0.98 x 2^10), and it is rotation invariant. On the
+// unit square and the L-shape (area 1, 0.75) L = 1: the thesis's / PHiLiP's physical H1
+// product, to the bit. With L = 1 on every domain the value and gradient terms traded places as
+// the domain grew (on [0, 2s] x [0, s], s = 0.01 ... 100: A1 s^3 356.8, 357.3, 389.1, 528.6 at
+// s = 0.01, 1, 10, 100; docs/estimate-frame.md). (A bounding box's side would not do: it
+// changes when the domain turns.)
+// Integrals use an (n+1)-point Gauss–Legendre tensor
 // rule per patch cell (exact for the mass term on parallelograms). Because ũ is a projection,
 // any u_h that is itself in P^n on the patch is reproduced exactly (to rounding), whatever the
 // quadrature — the unit tests rely on this.
@@ -27,6 +35,10 @@ namespace quadapt {
 /// Total-degree-n monomial exponents (i, j) for s^i t^j, ordered by total degree, then by
 /// decreasing i: (0,0), (1,0),(0,1), (2,0),(1,1),(0,2), ... Size (n+1)(n+2)/2.
 std::vector<std::pair<int, int>> monomial_exponents(int n);
+
+/// The length unit of the reconstruction's H1 product: the power of two nearest to sqrt of the
+/// mesh's area (sum of |cell area|, straight cells), 1 for an empty or degenerate mesh.
+double domain_length(const Mesh& mesh);
 
 /// A polynomial of total degree n in scaled local coordinates about `center`.
 struct PatchPolynomial {
@@ -65,6 +77,7 @@ class PatchReconstructor {
   Rule1D rule_;
   std::vector<std::pair<int, int>> exps_;
   int nq_ = 0;                 ///< quadrature points per cell, (n+1)^2
+  double length_ = 1;          ///< L of the H1 product (domain_length)
   /// Per cell and quadrature point: x, y, sqrt(w |J|), u, du/dx, du/dy (precomputed once).
   std::vector<double> qdata_;
 };

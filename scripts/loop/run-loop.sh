@@ -147,6 +147,8 @@ case "$METHOD" in
   bamg) tools+=(estimate-frame size-solve bamgquad); [ "$SMOOTH_BAMG" = yes ] && tools+=(quadsmooth) ;;
 esac
 if [ "$MODE" = goal ] && [ "$METHOD" != uniform ] && [[ " ${tools[*]} " != *" adjoint "* ]]; then tools+=(adjoint); fi
+# called directly from a checkout with no tools on PATH: the tools built in place (build/bin)
+if ! command -v dgsolve >/dev/null 2>&1 && [ -x "$root/build/bin/dgsolve" ]; then PATH="$root/build/bin:$PATH"; fi
 missing=()
 for t in "${tools[@]}"; do command -v "$t" >/dev/null 2>&1 || missing+=("$t"); done
 if [ ${#missing[@]} -gt 0 ]; then
@@ -211,6 +213,7 @@ CHILD=""
 on_signal() {
   trap - INT TERM HUP
   if [ -n "$CHILD" ]; then kill -TERM "$CHILD" 2>/dev/null || true; wait "$CHILD" 2>/dev/null || true; fi
+  echo "loop: stopped by a signal (status $1): the finished steps in $OUT are valid; rerun the same command to resume" >&2
   exit "$1"
 }
 trap 'on_signal 130' INT

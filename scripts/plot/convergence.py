@@ -26,6 +26,17 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter  # noqa: E402
 
+def style_for(label):
+    """The method's style; a label that starts with a method name (lpcvt-goal, bamg-seed2) takes
+    its colour and marker."""
+    if label in STYLE:
+        return STYLE[label]
+    for k in sorted(STYLE, key=len, reverse=True):
+        if label.startswith(k):
+            return STYLE[k]
+    return dict(marker="o")
+
+
 STYLE = {
     "uniform": dict(color="#555555", marker="s"),
     "fixed-fraction": dict(color="#2ca02c", marker="^"),
@@ -96,7 +107,7 @@ def make_figure(argv):
         label, path = spec.split("=", 1)
         labels.add(label)
         pts = read_curve(path, measure)
-        st = STYLE.get(label, dict(marker="o"))
+        st = style_for(label)
         if not pts:
             ax.plot([], [], label=label + " (no data)", **st)
             continue

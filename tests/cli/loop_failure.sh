@@ -164,6 +164,7 @@ for i in $(seq 1 200); do [ -s slow.pid ] && break; sleep 0.05; done
 kill -TERM "$loop_pid"
 rc=0; wait "$loop_pid" || rc=$?
 [ $rc -eq 143 ] || fail "TERM: loop status $rc (want 143)"
+grep -q "^loop: stopped by a signal (status 143): .*rerun the same command to resume" log7 || fail "TERM: no line saying how to resume: $(cat log7)"
 sleep 0.2
 if kill -0 "$(cat slow.pid)" 2>/dev/null; then kill "$(cat slow.pid)"; fail "the running tool outlived the loop"; fi
 rm bin/refine && ln -s "$QUADAPT_BIN_DIR/refine" bin/refine

@@ -200,3 +200,54 @@ TEST_CASE("shape mesh carries theta, rho, B, A1, A2, phi, p and no solution") {
   CHECK(s.cell_node_field("u") == nullptr);
   CHECK((*s.cell_field("p"))(3) == 2);
 }
+
+TEST_CASE("the error model does not depend on the unit of length") {
+  // The same problem on [0, s]^2 (perturbed 16 x 16 quads, u = atan(60 (r - 0.9)) about
+  // (-0.25 s, -0.25 s) in the scaled coordinates): A1 s^(p+1), A2 s^(p+1), rho and theta equal
+  // to rounding for s a power of two (the H1 product's L, a power of two, scales with them), and
+  // within 1 % for metres to millimetres and other factors (L then off by at most sqrt 2). With
+  // the physical product alone (L = 1 on every domain) A1 s^3 was 357.3 at s = 1 and 528.6 at
+  // s = 100 on a rectangle (docs/estimate-frame.md).
+  const int p = 2;
+  const Mesh base = make_perturbed_quads(16, 16, 0.25, 5);
+  auto solve = [&](double s) {
+    Mesh m = testutil::rescale(base, 0, s, 0, s);
+    m = with_u(std::move(m), p, [s](double x, double y) {
+      return std::atan(60 * (std::hypot(x / s + 0.25, y / s + 0.25) - 0.9));
+    });
+    return estimate_frame(m);
+  };
+  const EstimateResult ref = solve(1.0);
+  const double a1_max = *std::max_element(ref.A1.begin(), ref.A1.end());
+  for (const double s : {1.0 / 1024, 0.5, 8.0, 1024.0, 1e-3, 10.0, 1e3}) {
+    CAPTURE(s);
+    const bool power_of_two = std::exp2(std::round(std::log2(s))) == s;
+    const EstimateResult r = solve(s);
+    const double f = std::pow(s, p + 1);
+    double worst_a = 0, worst_rho = 0, worst_theta = 0;
+    std::vector<double> drho;
+    for (size_t c = 0; c < ref.A1.size(); ++c) {
+      if (ref.A1[c] < 1e-3 * a1_max) continue;  // the flat cells: no shape to compare
+      worst_a = quadapt_test::worst_of(worst_a, std::abs(r.A1[c] * f - ref.A1[c]) / ref.A1[c]);
+      const double d = std::abs(r.rho[c] - ref.rho[c]) / ref.rho[c];
+      worst_rho = quadapt_test::worst_of(worst_rho, d);
+      drho.push_back(d);
+      if (ref.rho[c] > 1.05) worst_theta = quadapt_test::worst_of(worst_theta, angle_diff_mod_pi(r.theta[c], ref.theta[c]));
+    }
+    std::sort(drho.begin(), drho.end());
+    const double median_rho = drho[drho.size() / 2];
+    MESSAGE("s = " << s << ": worst relative A1 " << worst_a << ", rho " << worst_rho << " (median " << median_rho
+                   << "), theta " << worst_theta << " rad");
+    if (power_of_two) {
+      CHECK(worst_a < 1e-7);
+      CHECK(worst_rho < 1e-7);
+      CHECK(worst_theta < 1e-7);
+    } else {
+      // L is then off by up to sqrt 2 from s: the top derivative moves little, the stretch of the
+      // nearly one-dimensional cells (A2 near zero) more
+      CHECK(worst_a < 1e-3);
+      CHECK(worst_theta < 1e-3);
+      CHECK(median_rho < 1e-2);
+    }
+  }
+}
