@@ -9,6 +9,11 @@
 
 namespace quadapt {
 
+namespace {
+/// Cells of a frame stretched at least this much have an orientation (frame.orientation_median_deg).
+constexpr double kOrientedStretch = 1.01;
+}  // namespace
+
 ShapeStats shape_stats(const Mesh& m, const std::vector<Eigen::Matrix2d>& M) {
   ShapeStats s;
   double angle_sum = 0, sj_sum = 0, dev_sum = 0;
@@ -106,17 +111,20 @@ QualityReport measure_quality(const Mesh& m, const Frame* fr, const std::string&
   f.file = frame_path;
   f.cells = fr->num_cells();
   f.continuous_complexity = fr->target_cells();
-  std::vector<double> stretch, axis;
+  std::vector<double> stretch, axis, axis_all;
   for (int c = 0; c < fr->num_cells(); ++c) {
     Eigen::JacobiSVD<Eigen::Matrix2d> svd(Mf[c], Eigen::ComputeFullV);
     const Eigen::Vector2d sv = svd.singularValues();  // decreasing
     stretch.push_back(sv(0) / sv(1));
     const Eigen::Vector2d longest = svd.matrixV().col(1);  // smallest sigma of M = largest h
     double a = std::atan2(longest.y(), longest.x()) * 180 / M_PI;
-    axis.push_back(std::fmod(a + 360.0, 180.0));
+    axis_all.push_back(std::fmod(a + 360.0, 180.0));
+    // a nearly isotropic cell has no long axis (the SVD's pick does not turn with the frame):
+    // it would move the median of a rotated frame (92.07 -> 4.34 deg under a 90 deg turn)
+    if (stretch.back() >= kOrientedStretch) axis.push_back(axis_all.back());
   }
   f.stretch_median = median(stretch);
-  f.orientation_median_deg = axial_median_deg(axis);
+  f.orientation_median_deg = axial_median_deg(axis.empty() ? axis_all : axis);
 
   const std::vector<Eigen::Matrix2d> M = fr->at_cells(m, &f.cells_outside);
   r.metric = shape_stats(m, M);

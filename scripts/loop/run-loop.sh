@@ -245,6 +245,8 @@ say() { echo "[$name] $*"; }
 
 # run_tool STEPDIR LOGNAME OUTPUT INPUTS... -- COMMAND...
 # Skips when OUTPUT and its report exist and no input is newer; else runs COMMAND with its
+# (CASE is not listed as an input: its contents are the run's, checked above by case_sha256, so its
+# file time says nothing; a touched or re-saved case file used to redo every step.)
 # stderr in STEPDIR/LOGNAME.log and prints one line.
 record_warnings() {  # record_warnings STEPDIR TOOL RC
   local dir="$1" tool="$2" rc="$3" log="$1/$2.log" w=() line content=""
@@ -370,7 +372,7 @@ trap stopped EXIT
 while :; do
   d="$OUT/step-$k"
   mkdir -p "$d"
-  run_tool "$d" dgsolve "$d/sol.msh" "$d/mesh.msh" "$CASE" -- dgsolve "$d/mesh.msh" -c "$CASE" -p "$P" -o "$d/sol.msh"
+  run_tool "$d" dgsolve "$d/sol.msh" "$d/mesh.msh" -- dgsolve "$d/mesh.msh" -c "$CASE" -p "$P" -o "$d/sol.msh"
   say "step-$k: $(ctl summary "$d/sol.json")"
   last=$k
   ctl table "$OUT" --last $k >/dev/null
@@ -380,7 +382,7 @@ while :; do
   if [ $stop = yes ]; then
     # goal mode: the adjoint on the final mesh too (its time and the error estimate for the table)
     if [ "$MODE" = goal ] && [ "$METHOD" != uniform ]; then
-      run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" "$CASE" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
+      run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
     fi
     break
   fi
@@ -400,7 +402,7 @@ while :; do
       geo=()
       [ -n "$GEOMETRY" ] && geo=(--geometry "$GEOMETRY")
       if [ "$MODE" = goal ]; then
-        run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" "$CASE" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
+        run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
         ind="$d/dwr.msh"
         if [ -n "$GEOMETRY" ]; then
           ind="$d/dwr-straight.msh"
@@ -426,7 +428,7 @@ while :; do
       fi
       run_tool "$d" estimate-frame "$d/shape.msh" "$sol" -- estimate-frame "$sol" -o "$d/shape.msh"
       if [ "$MODE" = goal ]; then
-        run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" "$CASE" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
+        run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
         run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" "$d/dwr.msh" -- \
           size-solve "$d/shape.msh" --growth "$GROWTH" --dwr "$d/dwr.msh" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} \
             ${R_MAX:+--r-max "$R_MAX"} ${C_MAX:+--c-max "$C_MAX"} ${SIZE_GRADATION:+--gradation "$SIZE_GRADATION"} -o "$d/frame.msh"

@@ -198,3 +198,22 @@ TEST_CASE("every PHiLiP fixture: measured as it is, and against its own frame") 
   }
   CHECK(n == 16);
 }
+
+TEST_CASE("frame orientation: nearly isotropic cells have none, and the median turns with the frame") {
+  // 3 x 3 background: 4 cells stretched 4:1 along theta, 5 isotropic (stretch 1 + 1e-9: the
+  // SVD's long axis is arbitrary there). Turning the frame by 90 degrees turns the median by 90;
+  // with the isotropic cells counted it did not (a review: 92.07 -> 4.34 instead of 2.07).
+  for (double theta : {10.0, 100.0}) {
+    CAPTURE(theta);
+    const Eigen::Matrix2d Ma = (rotation(theta) * Eigen::DiagonalMatrix<double, 2>(0.2, 0.05)).inverse();
+    const Eigen::Matrix2d Mi = (rotation(theta + 37) * Eigen::DiagonalMatrix<double, 2>(0.1, 0.1 * (1 - 1e-9))).inverse();
+    Mesh f = constant_frame(Ma);
+    CellField* v = f.cell_field("Vinv");
+    for (int c : {0, 2, 4, 6, 8})
+      for (int k : {0, 1, 3, 4}) (*v)(c, k) = Mi(k / 3, k % 3);
+    Frame frame = frame_from_mesh(f, "f", SizeConvention::Quadapt);
+    const Mesh m = make_structured_quads(4, 4);
+    QualityReport r = measure_quality(m, &frame, "f");
+    CHECK(r.frame.orientation_median_deg == doctest::Approx(theta).epsilon(1e-9));
+  }
+}
