@@ -214,7 +214,12 @@ class Parser {
     return false;
   }
   void expect(const char* sym, const char* what) {
-    if (!accept(sym)) fail(peek(), std::string("expected ") + what);
+    if (accept(sym)) return;
+    // "50(x + 1)", "2 x": an operand or '(' where an operator belongs (no implicit multiplication)
+    const Token& t = peek();
+    const bool operand = std::string(sym) == ")" && (t.kind == Token::Number || t.kind == Token::Name ||
+                                                     (t.kind == Token::Symbol && t.text == "("));
+    fail(t, std::string("expected ") + what + (operand ? " (missing operator? write 50*(x + 1), not 50(x + 1))" : ""));
   }
 
   Expr expr() {

@@ -86,6 +86,12 @@ TEST_CASE("parser: errors give the column and the offending token") {
   CHECK(parse_error("2 x").find("column 3") != std::string::npos);
   CHECK(parse_error("pow(x)").find("','") != std::string::npos);
   CHECK(parse_error("sin x").find("'('") != std::string::npos);
+  CHECK(parse_error("sin x").find("missing operator") == std::string::npos);
+  // an implicit product inside parentheses: the hint, not only "expected ')'"
+  m = parse_error("tanh(50(x + y - 1))");
+  CHECK(m.find("column 8") != std::string::npos);
+  CHECK(m.find("missing operator? write 50*(x + 1)") != std::string::npos);
+  CHECK(parse_error("sin(2 x)").find("missing operator?") != std::string::npos);
   CHECK(parse_error("2e").find("'e'") != std::string::npos);  // "2e" is not a number
   CHECK_THROWS_AS(parse_constant("1 + x"), InputError);
   CHECK(parse_constant("0.01*pi/e*12") == doctest::Approx(0.01 * M_PI / M_E * 12).epsilon(1e-15));
