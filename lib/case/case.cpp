@@ -15,6 +15,15 @@ namespace {
 
 using nlohmann::json;
 
+/// A coefficient of D or c is 0 or of magnitude 1e-100..1e100: beyond, the adjoint's products of
+/// residual and adjoint over- or underflow (measured: D = 1e200 I gave sum_eta = 0); the linear
+/// systems themselves are scaled (linear_solver.hpp system_scale).
+void check_magnitude(double v, const std::string& path, const char* key) {
+  if (v != 0 && !(std::abs(v) >= 1e-100 && std::abs(v) <= 1e100))
+    throw InputError(path, std::string("key '") + key + "': entry " + sci(v) +
+                               " is outside 1e-100..1e100 in magnitude (write 0, or rescale the problem)");
+}
+
 double constant_value(const json& v, const std::string& path, const std::string& key) {
   if (v.is_number()) return v.get<double>();
   if (v.is_string()) {
@@ -117,13 +126,8 @@ Case parse_case(const std::string& text, const std::string& path) {
       for (int c = 0; c < 2; ++c) cs.diffusion(r, c) = constant_value(d[r][c], path, "diffusion");
     const Eigen::Matrix2d& D = cs.diffusion;
     if (!D.allFinite()) throw InputError(path, "key 'diffusion' has a non-finite entry");
-    // beyond this the adjoint's products of residual and adjoint over- or underflow (measured:
-    // D = 1e200 I gave sum_eta = 0); the solver itself is scaled (linear_solver.hpp system_scale)
     for (int r = 0; r < 2; ++r)
-      for (int c = 0; c < 2; ++c)
-        if (D(r, c) != 0 && !(std::abs(D(r, c)) >= 1e-100 && std::abs(D(r, c)) <= 1e100))
-          throw InputError(path, "key 'diffusion': entry " + sci(D(r, c)) +
-                                     " is outside 1e-100..1e100 in magnitude (write 0, or rescale the problem)");
+      for (int c = 0; c < 2; ++c) check_magnitude(D(r, c), path, "diffusion");
     double scale = D.cwiseAbs().maxCoeff();
     if (std::abs(D(0, 1) - D(1, 0)) > 1e-14 * scale)
       throw InputError(path, "key 'diffusion' must be symmetric ([[a, b], [b, c]])");
@@ -137,10 +141,7 @@ Case parse_case(const std::string& text, const std::string& path) {
     if (!c.is_array() || c.size() != 2) throw InputError(path, "key 'advection' must be an array [cx, cy]");
     for (int r = 0; r < 2; ++r) cs.advection(r) = constant_value(c[r], path, "advection");
     if (!cs.advection.allFinite()) throw InputError(path, "key 'advection' has a non-finite entry");
-    for (int r = 0; r < 2; ++r)
-      if (cs.advection(r) != 0 && !(std::abs(cs.advection(r)) >= 1e-100 && std::abs(cs.advection(r)) <= 1e100))
-        throw InputError(path, "key 'advection': entry " + sci(cs.advection(r)) +
-                                   " is outside 1e-100..1e100 in magnitude (write 0, or rescale the problem)");
+    for (int r = 0; r < 2; ++r) check_magnitude(cs.advection(r), path, "advection");
   }
   if (!j.contains("exact")) throw InputError(path, "missing key 'exact' (the exact solution u(x, y))");
   if (!j["exact"].is_string()) throw InputError(path, "key 'exact' must be an expression string");

@@ -229,8 +229,7 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
     // match by name too)
     functional_groups_.assign(ng, 0);
     for (int gi = 0; gi < ng; ++gi)
-      if (mesh.groups[gi].name == cs.functional_boundary) functional_groups_[gi] = 1;
-    has_functional_ = mesh.find_group(cs.functional_boundary) >= 0;
+      if (mesh.groups[gi].name == cs.functional_boundary) functional_groups_[gi] = 1, has_functional_ = true;
     if (!has_functional_)
       throw InputError(cs.path, "functional boundary '" + cs.functional_boundary +
                                     "' is not a boundary group of the mesh");

@@ -23,19 +23,23 @@ std::string list(const std::vector<std::string>& names) {
   return s;
 }
 
-constexpr const char* kClockwise = "inverted (ordered clockwise";
+/// The problem of one cell ("" when valid), and whether it is only ordered clockwise.
+struct CellProblem {
+  std::string text;
+  bool clockwise = false;
+};
 
 /// Geometric check of one cell: "" when valid, else the problem.
 /// Corner Jacobian at vertex k: cross(v[k+1] - v[k], v[k-1] - v[k]) (4 det J of the bilinear
 /// map at that corner for a quad, 2 * area for a triangle). Negative: inverted. Zero (below
 /// 1e-12 times the squared longest edge) or zero area: degenerate.
-std::string cell_problem(const Mesh& m, int c) {
+CellProblem cell_problem(const Mesh& m, int c) {
   const Cell& cell = m.cells[c];
   double longest2 = 0;
   for (int k = 0; k < cell.nv; ++k)
     longest2 = std::max(longest2, (m.nodes[cell.v[(k + 1) % cell.nv]] - m.nodes[cell.v[k]]).squaredNorm());
   const double tol = 1e-12 * longest2;
-  if (longest2 == 0) return "degenerate: all its vertices coincide";
+  if (longest2 == 0) return {"degenerate: all its vertices coincide"};
   int negative = 0, first_negative = -1;
   double twice_area = 0;  // signed (shoelace): > 0 counter-clockwise
   for (int k = 0; k < cell.nv; ++k) {
@@ -48,20 +52,20 @@ std::string cell_problem(const Mesh& m, int c) {
   }
   if (negative > 0) {
     const std::string corner = std::to_string(first_negative + 1) + " " + point_text(m.nodes[cell.v[first_negative]]);
-    if (negative == cell.nv) return std::string(kClockwise) + ": every corner's Jacobian is negative)";
+    if (negative == cell.nv) return {"inverted (ordered clockwise: every corner's Jacobian is negative)", true};
     if (negative == 1 && twice_area > tol)  // a dart: one reflex corner, the outline counter-clockwise
-      return "non-convex: reflex angle at corner " + corner + " (a quad must be convex)";
-    return "inverted: negative Jacobian at corner " + corner;
+      return {"non-convex: reflex angle at corner " + corner + " (a quad must be convex)"};
+    return {"inverted: negative Jacobian at corner " + corner};
   }
-  if (cell_area(m, c) <= tol) return "degenerate: zero area";
+  if (cell_area(m, c) <= tol) return {"degenerate: zero area"};
   for (int k = 0; k < cell.nv; ++k) {
     const Vec2& p = m.nodes[cell.v[k]];
     Vec2 a = m.nodes[cell.v[(k + 1) % cell.nv]] - p;
     Vec2 b = m.nodes[cell.v[(k + cell.nv - 1) % cell.nv]] - p;
     if (a.x() * b.y() - a.y() * b.x() <= tol)
-      return "degenerate: zero Jacobian at corner " + std::to_string(k + 1) + " " + point_text(p) + " (vertices in line)";
+      return {"degenerate: zero Jacobian at corner " + std::to_string(k + 1) + " " + point_text(p) + " (vertices in line)"};
   }
-  return "";
+  return {};
 }
 
 }  // namespace
@@ -100,12 +104,12 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
   int bad = 0, first_bad = -1, clockwise = 0;
   std::string first_problem;
   for (int c = 0; c < nc; ++c) {
-    std::string p = cell_problem(m, c);
-    if (p.empty()) continue;
-    if (p.rfind(kClockwise, 0) == 0) ++clockwise;
+    CellProblem p = cell_problem(m, c);
+    if (p.text.empty()) continue;
+    if (p.clockwise) ++clockwise;
     if (bad++ == 0) {
       first_bad = c;
-      first_problem = p;
+      first_problem = std::move(p.text);
     }
   }
   if (clockwise == nc)
