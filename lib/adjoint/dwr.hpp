@@ -40,10 +40,12 @@ namespace quadapt {
 ///   Flow:  downstream first (downwind_order of -c, lib/dg/solve.hpp): the adjoint of an upwind
 ///          scheme carries information against the flow, so in this order the transposed
 ///          advection operator is (block) lower triangular — one exact block sweep for pure
-///          advection. Same as Mesh when c = 0.
+///          advection. When c = 0: dgsolve's sweep in y (the same order as the primal's).
 ///   Mesh:  the mesh's cell order.
-///   Auto:  Flow for pure advection, Mesh with diffusion (measured: with diffusion the flow
-///          order saves no gmres-2level iteration and costs a permuted copy of the matrix).
+///   Auto:  Flow (the default). The mesh order was auto's choice with diffusion until measured
+///          on adapted meshes, whose file order is arbitrary: gmres-2level needed 46-229
+///          iterations there against 16-22 in the flow order (S-shock goal loop, p = 2), and an
+///          advection-dominated case fell back to UMFPACK (docs/adjoint.md, Solver).
 enum class AdjointOrdering { Auto, Mesh, Flow };
 
 struct AdjointOptions {
