@@ -145,6 +145,8 @@ def cmd_params(args):
     new = dict(p.split("=", 1) for p in pairs)
     old = load(path) if os.path.exists(path) else None
     if old is None:
+        if "tools" in new:
+            new["tools"] = [new["tools"]]
         atomic_write(path, json.dumps(new, indent=1, sort_keys=True) + "\n")
         return
     # the case is known by its contents (case_sha256), not its path: a moved project or another
@@ -161,6 +163,8 @@ def cmd_params(args):
             return a == b or float(a) == float(b)
         except (TypeError, ValueError):
             return False
+    new_tools = new.pop("tools", None)
+    old_tools = old.pop("tools", [])
     diff = [k for k in sorted(set(old) | set(new)) if not same(k)]
     if diff:
         def shown(v):
@@ -168,6 +172,17 @@ def cmd_params(args):
         lines = ["  %s: was %s, now %s" % (k, shown(old.get(k)), shown(new.get(k))) for k in diff]
         sys.exit("%s: this run directory was made with other parameters:\n%s\n"
                  "  use another OUT, or delete the directory to start again" % (path, "\n".join(lines)))
+    # the tools are provenance, not a parameter: a run resumed with other tools (rebuilt, another
+    # BIN) goes on, with a warning; the steps already made keep theirs (each step's reports name
+    # their tools' commit), and loop.json lists every set of tools the run has seen
+    seen = [old_tools] if isinstance(old_tools, str) else list(old_tools)
+    if new_tools is not None and new_tools not in seen:
+        if seen:
+            print("loop: warning: %s: resumed with other tools (%s); the run was made with %s: the steps "
+                  "already made are kept (their reports name their tools)" % (path, new_tools, "; ".join(seen)),
+                  file=sys.stderr)
+        old["tools"] = seen + [new_tools]
+        atomic_write(path, json.dumps(old, indent=1, sort_keys=True) + "\n")
 
 
 def row_for(step_dir, k):

@@ -234,11 +234,15 @@ wls=()  # likewise WALLS
 [ -z "$WALLS" ] || [ "$METHOD" != lpcvt ] || wls=(walls="$WALLS")
 sgr=()  # likewise SIZE_GRADATION, for the methods that call size-solve
 case "$METHOD" in lpcvt|bamg) sgr=(${SIZE_GRADATION:+size_gradation="$SIZE_GRADATION"}) ;; esac
-msg="$(ctl params "$OUT/loop.json" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
+# the tools' provenance ("quadapt 0.1.0, commit SHA[ (dirty ...)]", as their reports give it):
+# recorded at the start; a resume with other tools is warned about, not refused (loopctl params)
+tools_id="$(dgsolve --version 2>/dev/null | awk 'NR == 1 {v = $NF} NR == 2 {sub(/^commit /, ""); c = $0} END {print "quadapt " v ", commit " c}')"
+msg="$(ctl params "$OUT/loop.json" tools="$tools_id" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
   method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" ${jit[@]+"${jit[@]}"} \
   smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} \
   ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} ${phs[@]+"${phs[@]}"} ${wls[@]+"${wls[@]}"} ${rcm[@]+"${rcm[@]}"} \
   ${sgr[@]+"${sgr[@]}"} 2>&1)" || die "$msg"
+[ -z "$msg" ] || echo "$msg" >&2
 
 name="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
 say() { echo "[$name] $*"; }

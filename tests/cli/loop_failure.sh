@@ -149,6 +149,25 @@ if bad or set(loopctl.PARAM_DEFAULTS) != set(want):
 print("ok: loopctl's defaults are the tools'", want)
 PYEOF
 
+# the tools' provenance in loop.json (a list: every set of tools the run has seen); a resume with
+# other tools goes on with a warning naming both (was: nothing recorded which tools made a run)
+python3 - run/loop.json "$(dgsolve --version | sed -n 2p)" <<'PYEOF' || fail "loop.json: tools"
+import json, sys
+t = json.load(open(sys.argv[1]))["tools"]
+assert isinstance(t, list) and len(t) == 1 and t[0].startswith("quadapt ") and sys.argv[2] in t[0], t
+PYEOF
+python3 - run/loop.json <<'PYEOF'
+import json, sys
+d = json.load(open(sys.argv[1])); d["tools"] = ["quadapt 0.0.9, commit 0000000"]
+json.dump(d, open(sys.argv[1], "w"), indent=1, sort_keys=True)
+PYEOF
+PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --out run > log6d 2>&1 ||
+  { cat log6d; fail "a resume with other tools was refused"; }
+grep -q "loop: warning: .*/run/loop.json: resumed with other tools (quadapt .*); the run was made with quadapt 0.0.9, commit 0000000" log6d ||
+  fail "no warning for other tools: $(cat log6d)"
+python3 -c 'import json,sys; t = json.load(open(sys.argv[1]))["tools"]; assert len(t) == 2 and t[0].endswith("0000000"), t' run/loop.json ||
+  fail "loop.json does not list both sets of tools"
+
 # --- a TERM to the loop stops the running tool too and leaves the lock free (was: the tool ran on,
 # orphaned, holding the lock, and a rerun said "another loop is running"); status 143
 rm -f bin/refine  # a symlink to the real refine now: writing through it would replace the tool
