@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
         sol.set_field(interpolate_dg(sol, p_exact, [&](double x, double y) {
           const double v = evaluate(e, x, y);
           if (!std::isfinite(v))
-            throw InputError("--exact '" + exact + "' is not finite at (" + sci(x) + ", " + sci(y) + ") on " + in);
+            throw InputError("--exact '" + exact + "' is not finite at " + sci_point(x, y) + " on " + in);
           return v;
         }, opt.field));
         tool.option("exact", exact);

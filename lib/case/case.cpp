@@ -260,9 +260,8 @@ void check_case_finite(const Case& cs, const Mesh& mesh) {
     ex.eval(x.x(), x.y(), out, scratch.data());
     for (int k = 0; k < ExactSolution::NUM_OUTPUTS; ++k)
       if (!std::isfinite(out[k])) {
-        char at[96];
-        std::snprintf(at, sizeof at, "(%.3e, %.3e)", x.x(), x.y());
-        throw InputError(cs.path, what[k] + std::string(" of '") + cs.exact_source + "' is not finite at " + at +
+        throw InputError(cs.path, what[k] + std::string(" of '") + cs.exact_source + "' is not finite at " +
+                                      sci_point(x.x(), x.y()) +
                                       " (a point of the mesh)");
       }
   };
@@ -279,10 +278,8 @@ void check_case_finite(const Case& cs, const Mesh& mesh) {
         for (const Vec2& x : {a, Vec2(0.5 * (a + b)), b}) {
           const double v = evaluate(bd.expr, x.x(), x.y());
           if (std::isfinite(v)) continue;
-          char at[96];
-          std::snprintf(at, sizeof at, "(%.3e, %.3e)", x.x(), x.y());
           throw InputError(cs.path, std::string("key '") + key + "." + bd.boundary + "': '" + bd.source +
-                                        "' is not finite at " + at + " (a point of that boundary)");
+                                        "' is not finite at " + sci_point(x.x(), x.y()) + " (a point of that boundary)");
         }
       }
   };

@@ -12,4 +12,7 @@ inline std::string sci(double v) {
   return buf;
 }
 
+/// A point (x, y) as "(x, y)" with both coordinates as sci() prints them: "(5.000e-01, 1.000e+00)".
+inline std::string sci_point(double x, double y) { return "(" + sci(x) + ", " + sci(y) + ")"; }
+
 }  // namespace quadapt

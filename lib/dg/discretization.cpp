@@ -111,6 +111,9 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
   if (!mesh.all_quads())
     throw InputError("mesh: " + std::to_string(mesh.num_triangles()) +
                      " triangles; the DG solver needs an all-quad mesh (use recombine)");
+  // the case's boundary names against the mesh's groups (the tools check this first, with the
+  // file names; here for every caller of the library)
+  check_case_boundaries(cs, mesh);
   if (opt_.extra_points < 1) opt_.extra_points = 1;
   topo_ = build_topology(mesh);
   exact_ = std::make_unique<ExactSolution>(cs);
@@ -230,9 +233,6 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
     functional_groups_.assign(ng, 0);
     for (int gi = 0; gi < ng; ++gi)
       if (mesh.groups[gi].name == cs.functional_boundary) functional_groups_[gi] = 1, has_functional_ = true;
-    if (!has_functional_)
-      throw InputError(cs.path, "functional boundary '" + cs.functional_boundary +
-                                    "' is not a boundary group of the mesh");
   }
 
   // Block pattern and column offsets.
