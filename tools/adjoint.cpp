@@ -89,6 +89,12 @@ int main(int argc, char** argv) {
         throw InputError(case_path, "the case has no functional; add \"functional\": {\"boundary\": NAME}");
       check_case_boundaries(cs, mesh);
     }
+    // accepted (the thesis's S-shock and boundary layer with diffusion do it), but rarely meant
+    if (cs.is_dirichlet(cs.functional_boundary))
+      tool.log("warning: the functional boundary '" + cs.functional_boundary + "' has Dirichlet data in " + case_path +
+               ": J = integral of u_h^2 there measures the weak boundary condition's mismatch, so a goal loop "
+               "refines along that boundary rather than where the solution's error is; put the functional on a "
+               "boundary without Dirichlet data (docs/adjoint.md, Limitations)");
     tool.log(std::to_string(mesh.num_cells()) + " cells, p = " + std::to_string(p) + " -> fine p = " +
              std::to_string(p + 1) + ", " + std::to_string(static_cast<long long>(mesh.num_cells()) * (p + 2) * (p + 2)) +
              " fine dofs");

@@ -111,6 +111,16 @@ Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, con
   }
 }
 
+DGOptions fine_dg_options(const DGOptions& primal, int p) {
+  DGOptions o = primal;
+  // Dirichlet faces keep the fine space's own penalty: there the weak boundary mismatch is a
+  // real local error (what a functional on a Dirichlet boundary measures), not a pair of
+  // cancelling terms
+  if (o.boundary_penalty_factor < 0) o.boundary_penalty_factor = primal.penalty_factor;
+  o.penalty_factor = primal.penalty_factor * p / (p + 2);  // interior faces: factor' (p+1)(p+2) = factor p(p+1)
+  return o;
+}
+
 DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U, int p, const AdjointOptions& opt) {
   if (!cs.has_functional())
     throw InputError(cs.path, "the case has no functional; add \"functional\": {\"boundary\": NAME} "
@@ -131,7 +141,7 @@ DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U
   r.dofs = nbc * nc;
   Stopwatch sw(r.timings);
 
-  DGDiscretization fine(mesh, cs, p + 1, opt.dg);
+  DGDiscretization fine(mesh, cs, p + 1, fine_dg_options(opt.dg, p));
   const int nb = fine.dofs_per_cell();
   r.fine_dofs = fine.num_dofs();
   sw.lap("fine_setup");

@@ -323,6 +323,8 @@ void DGDiscretization::assemble_columns(
   const bool diff = !cs_.advection_only();
   const bool adv = !cvec.isZero(0.0);
   const double pen_base = opt_.penalty_factor * p_ * (p_ + 1);
+  const double pen_base_boundary =
+      (opt_.boundary_penalty_factor < 0 ? opt_.penalty_factor : opt_.boundary_penalty_factor) * p_ * (p_ + 1);
   const int nf = nq;  // face Gauss points
   const Rule1D& g = I.gv;
 
@@ -449,7 +451,7 @@ void DGDiscretization::assemble_columns(
           }
           if (diff && face_dirichlet_[fi]) {
             const double hK = I.height[c][fc.local_edge[0]];
-            for (int q = 0; q < nf; ++q) pen[q] = pen_base * nDn[q] / hK;
+            for (int q = 0; q < nf; ++q) pen[q] = pen_base_boundary * nDn[q] / hK;
             FL.topRows(nf) = Phi[0];
             FL.bottomRows(nf) = Nn[0];
             FR.topRows(nf) = Wf.asDiagonal() * (-Nn[0] + (pen + cplus).asDiagonal() * Phi[0]);

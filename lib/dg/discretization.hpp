@@ -58,6 +58,9 @@ using SparseMatrixCSC = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 struct DGOptions {
   double penalty_factor = 20.0;  ///< SIPG sigma = factor * p(p+1) * n^T D n / h
+  /// The factor on Dirichlet boundary faces; < 0 (the default): penalty_factor. The adjoint's fine
+  /// space sets the two apart (adjoint/dwr.hpp, fine_dg_options).
+  double boundary_penalty_factor = -1.0;
   int extra_points = 1;          ///< Gauss points per direction = p + 1 + extra_points (>= 1)
   int error_points = 0;          ///< points per direction for l2_error; 0 = max(2p + 4, 10)
 };

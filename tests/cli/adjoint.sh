@@ -107,6 +107,14 @@ expect_fail "inlet.json.*'inlet'" "$T/sol1.msh" -c "$T/inlet.json"
 expect_fail "no DG solution field 'v'" "$T/sol1.msh" -c "$T/smooth.json" --field v
 expect_fail "unknown linear solver" "$T/sol1.msh" -c "$T/smooth.json" --solver magic
 expect_fail "ordering" "$T/sol1.msh" -c "$T/smooth.json" --ordering sideways
+# a functional on a boundary with Dirichlet data: accepted, with a warning naming the boundary and
+# the case (a reviewer's goal loop refined only the boundary mismatch, silently); none otherwise
+sed 's/"dirichlet": \["left", "top", "bottom"\]/"dirichlet": ["left", "top", "bottom", "right"]/' "$T/smooth.json" >"$T/dirfun-case.json"
+grep -q '"right"\]' "$T/dirfun-case.json" || fail "test setup: dirfun.json"
+adjoint "$T/sol1.msh" -c "$T/dirfun-case.json" -o "$T/dirfun.msh" 2>"$T/errw" || fail "functional on a Dirichlet side refused: $(cat "$T/errw")"
+grep -q "warning: the functional boundary 'right' has Dirichlet data in .*dirfun-case.json" "$T/errw" || fail "no warning: $(cat "$T/errw")"
+adjoint "$T/sol1.msh" -c "$T/smooth.json" -o "$T/nowarn.msh" 2>"$T/errw2"
+if grep -qi warning "$T/errw2"; then fail "a warning without Dirichlet data on the functional boundary: $(cat "$T/errw2")"; fi
 # never overwrite an input
 cp "$T/sol1.msh" "$T/keep.msh"
 set +e

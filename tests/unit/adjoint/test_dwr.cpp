@@ -8,6 +8,7 @@
 //  - bad input throws InputError.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -37,8 +38,8 @@ const char* kAdvection =
     R"J({"exact": "sin(2*x+0.5)*cos(3*y-0.2) + exp(x*y)", "advection": [1.0, 0.6],
          "functional": {"boundary": "right"}})J";
 
-Eigen::VectorXd primal(const Mesh& m, const Case& cs, int p) {
-  DGDiscretization dg(m, cs, p);
+Eigen::VectorXd primal(const Mesh& m, const Case& cs, int p, const DGOptions& dgo = {}) {
+  DGDiscretization dg(m, cs, p, dgo);
   SparseMatrixCSC A;
   Eigen::VectorXd b;
   dg.assemble(A, b);
@@ -80,8 +81,10 @@ TEST_CASE("DWR identity: -psi^T R = J(u_h) - J(u_h^H) - int (u_h - u_h^H)^2, con
         AdjointOptions o;
         o.solver.kind = LinearSolverKind::UmfPack;
         const DWRResult r = compute_dwr(m, cs, UH, p, o);
-        DGDiscretization fine(m, cs, p + 1);
-        const Eigen::VectorXd uh = primal(m, cs, p + 1), uhH = fine.inject(UH, p);
+        // the fine space's discretisation: the primal's SIPG penalty (fine_dg_options)
+        const DGOptions fo = fine_dg_options({}, p);
+        DGDiscretization fine(m, cs, p + 1, fo);
+        const Eigen::VectorXd uh = primal(m, cs, p + 1, fo), uhH = fine.inject(UH, p);
         const double rhs = fine.functional(uh) - fine.functional(uhH) - fine.functional(uh - uhH);
         INFO("p=" << p << " nonconforming=" << nc << " estimate " << r.estimate << " vs " << rhs);
         CHECK(std::abs(r.estimate - rhs) <= 1e-10 * std::abs(rhs) + 1e-15);
@@ -181,6 +184,38 @@ TEST_CASE("adjoint solves agree: every solver and elimination order vs UMFPACK o
         if (cs == &adv && ord != AdjointOrdering::Mesh && k == LinearSolverKind::Auto) CHECK(info.solver == "block-sweep");
       }
   }
+}
+
+TEST_CASE("cell indicators: the fine form on the primal's space is the primal's (cellwise Galerkin orthogonality)") {
+  // u_H solves the degree-p problem, so R_h(u_H)(v_H) = 0 for every v_H of degree p on one cell
+  // when the fine space's form restricted to degree p is the primal's: the part I_H psi of the
+  // weight (psi interpolated to degree p, cell by cell) adds nothing to any cell's eta_k. With
+  // the fine space's own SIPG penalty it did, in cancelling pairs: sum_eta / |estimate| was
+  // 1e3-1e4 on natural functional boundaries (docs/adjoint.md, "Cell indicators").
+  const Case cs = parse_case(kDiffusion, "t.json");  // functional on the natural boundary x = 1
+  for (int p = 1; p <= 3; ++p)
+    for (int nc = 0; nc < 2; ++nc) {
+      const Mesh m = nc ? nonconforming(6) : make_structured_quads(7, 6);
+      const DWRResult r = dwr(m, cs, p);
+      DGDiscretization coarse(m, cs, p), fine(m, cs, p + 1, fine_dg_options({}, p));
+      const Eigen::VectorXd Ipsi = fine.inject(coarse.inject(r.psi, p + 1), p);  // I_H psi at the fine nodes
+      const int nb = (p + 2) * (p + 2);
+      double coarse_part = 0;
+      for (int k = 0; k < m.num_cells(); ++k) {
+        // cells on a Dirichlet side (left, top, bottom) keep the fine space's own penalty on that
+        // face (fine_dg_options): their boundary mismatch is a true local term
+        bool dirichlet = false;
+        for (int v : m.cells[k].v)
+          if (v >= 0 && (m.nodes[v].x() == 0 || m.nodes[v].y() == 0 || m.nodes[v].y() == 1)) dirichlet = true;
+        if (!dirichlet)
+          coarse_part = std::max(coarse_part, std::abs(Ipsi.segment(k * nb, nb).dot(r.residual.segment(k * nb, nb))));
+      }
+      const double eta_max = *std::max_element(r.eta.begin(), r.eta.end());
+      INFO("p=" << p << " nonconforming=" << nc << ": max over interior cells |(I_H psi)_k . R_k| " << coarse_part << ", max eta "
+                << eta_max << ", sum_eta " << r.sum_eta << ", estimate " << r.estimate);
+      CHECK(coarse_part <= 1e-4 * eta_max);  // the finer quadrature: 1e-6..4e-6 measured
+      CHECK(r.sum_eta <= 20 * std::abs(r.estimate));
+    }
 }
 
 TEST_CASE("the file's cell order does not slow the adjoint: auto orders the cells along the flow") {
