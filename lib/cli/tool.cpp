@@ -74,6 +74,7 @@ void Tool::output(const std::string& path) {
     report_decided_ = true;
     // Beside the first output; none when that is standard output, a device or a FIFO (unless
     // --report): /dev/stdout.json is nobody's report.
+    report_explicit_ = !report_path_.empty();
     if (report_path_.empty() && target.kind == OutputTarget::Kind::Regular) report_path_ = default_report_path(path);
     declare_report();
   }
@@ -82,6 +83,7 @@ void Tool::output(const std::string& path) {
 void Tool::set_report_path(const std::string& p) {
   report_path_ = p;
   report_decided_ = true;
+  report_explicit_ = true;
   declare_report();
 }
 
@@ -89,7 +91,12 @@ void Tool::declare_report() {
   if (report_path_.empty()) return;
   resolve_output(report_path_);
   use_stdio(report_path_, stdout_used_, "output");
-  protect_output(report_path_);
+  // named in a refusal: `dgsolve M -c X.json -o X.msh` would write its report X.json over the case
+  if (report_explicit_)
+    protect_output(report_path_, "the report (--report)", "give --report another path");
+  else
+    protect_output(report_path_, "the report written beside the output " + (outputs_.empty() ? std::string() : outputs_.front()),
+                   "give --report another path, or -o another name");
 }
 
 void Tool::log(const std::string& msg) const {

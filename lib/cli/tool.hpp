@@ -100,6 +100,7 @@ class Tool {
   std::vector<std::string> outputs_;
   std::string report_path_;
   bool report_decided_ = false;
+  bool report_explicit_ = false;  ///< --report given (or set_report_path), not beside the output
   bool stdin_used_ = false;
   bool stdout_used_ = false;
   bool quiet_ = false;

@@ -31,11 +31,15 @@ struct Entry {
   FileId id;
 };
 
+struct Output {
+  std::string path, role, remedy;  // role, remedy: how a refusal names it and what to do instead
+};
+
 struct Registry {
   std::mutex mutex;
   bool enabled = false;
   std::vector<Entry> inputs;
-  std::vector<std::string> outputs;  // may not exist yet: identity taken when an input is added
+  std::vector<Output> outputs;  // may not exist yet: identity taken when an input is added
 };
 
 Registry& registry() {
@@ -43,8 +47,10 @@ Registry& registry() {
   return r;
 }
 
-[[noreturn]] void refuse(const std::string& output, const std::string& input) {
-  throw InputError(output, "output would overwrite the input file " + input + "; choose another output path");
+[[noreturn]] void refuse(const std::string& output, const std::string& input, const std::string& role = "",
+                         const std::string& remedy = "") {
+  throw InputError(output, (role.empty() ? std::string("output") : role) + " would overwrite the input file " + input +
+                               "; " + (remedy.empty() ? std::string("choose another output path") : remedy));
 }
 
 // The path with every symlink of its existing part resolved (names a file that may not exist yet).
@@ -55,11 +61,12 @@ std::string canonical_key(const std::string& path) {
 }
 
 // Caller holds the lock.
-void check_locked(Registry& r, const std::string& output) {
+void check_locked(Registry& r, const std::string& output, const std::string& role = "",
+                  const std::string& remedy = "") {
   const auto id = file_id(output);
   if (!id) return;  // a file that does not exist cannot be an input
   for (const Entry& e : r.inputs)
-    if (e.id == *id) refuse(output, e.path);
+    if (e.id == *id) refuse(output, e.path, role, remedy);
 }
 
 }  // namespace
@@ -82,25 +89,25 @@ void protect_input(const std::string& path) {
   if (!r.enabled) return;
   const auto id = file_id(path);
   if (!id) return;
-  for (const std::string& out : r.outputs)
-    if (file_id(out) == id) refuse(out, path);
+  for (const Output& out : r.outputs)
+    if (file_id(out.path) == id) refuse(out.path, path, out.role, out.remedy);
   for (const Entry& e : r.inputs)
     if (e.id == *id) return;
   r.inputs.push_back({path, *id});
 }
 
-void protect_output(const std::string& path) {
+void protect_output(const std::string& path, const std::string& role, const std::string& remedy) {
   Registry& r = registry();
   std::lock_guard<std::mutex> lock(r.mutex);
   if (!r.enabled) return;
-  check_locked(r, path);
+  check_locked(r, path, role, remedy);
   if (path != "-") {
     const std::string key = canonical_key(path);
-    for (const std::string& out : r.outputs)
-      if (out != "-" && canonical_key(out) == key)
-        throw InputError(path, "is given twice as an output (also as " + out + ")");
+    for (const Output& out : r.outputs)
+      if (out.path != "-" && canonical_key(out.path) == key)
+        throw InputError(path, "is given twice as an output (also as " + out.path + ")");
   }
-  r.outputs.push_back(path);
+  r.outputs.push_back({path, role, remedy});
 }
 
 void check_not_an_input(const std::string& path) {

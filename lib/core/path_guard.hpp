@@ -26,7 +26,9 @@ void protect_input(const std::string& path);
 
 /// Records `path` as an output of this process. Throws InputError "PATH: output would overwrite
 /// the input file IN; choose another output path" if it is (or resolves to) a protected input.
-void protect_output(const std::string& path);
+/// `role`, when given, names the output in that message instead, with its own remedy (e.g. a
+/// report written beside the output: "the report written beside OUT ... (--report PATH)").
+void protect_output(const std::string& path, const std::string& role = "", const std::string& remedy = "");
 
 /// Throws InputError if writing `path` would replace a protected input (see protect_output);
 /// does not record it. Called by every atomic_write.

@@ -34,6 +34,17 @@ done
 rc=0; msg=$(lpcvt -q --bogus 2>&1) || rc=$?
 grep -q 'unknown option --bogus' <<<"$msg" || fail "lpcvt: $msg"
 
+# --- a report that would overwrite an input is named as the report, with its remedy (was
+# "X.json: output would overwrite the input file X.json" for `-c X.json -o X.msh`)
+cp "$S/examples/cases/smooth.json" "$T/X.json"
+rc=0; msg=$(dgsolve "$S/examples/meshes/square16.msh" -c "$T/X.json" -p 1 -o "$T/X.msh" 2>&1) || rc=$?
+[ $rc -eq 2 ] && grep -q "X.json: the report written beside the output .*X.msh would overwrite the input file .*X.json; give --report another path, or -o another name" <<<"$msg" ||
+  fail "report over the case: exit $rc, $msg"
+rc=0; msg=$(dgsolve "$S/examples/meshes/square16.msh" -c "$T/X.json" -p 1 -o "$T/Y.msh" --report "$T/X.json" 2>&1) || rc=$?
+[ $rc -eq 2 ] && grep -q "the report (--report) would overwrite the input file .*X.json; give --report another path" <<<"$msg" ||
+  fail "--report over the case: exit $rc, $msg"
+[ ! -e "$T/X.msh" ] && [ ! -e "$T/Y.msh" ] && cmp -s "$T/X.json" "$S/examples/cases/smooth.json" || fail "report collision: something was written"
+
 # --- no absurd bounds in range errors
 M=$S/examples/meshes/square16.msh
 for cmd in "dgsolve --threads -1 $M" "recombine $M -o $T/y.msh --topology-passes -5" "bamgquad $M -o $T/y.msh --edge-factor -1"; do
