@@ -105,6 +105,7 @@ int main(int argc, char** argv) {
     tool.log("adjoint solved with " + r.solve.solver + " (" + std::to_string(r.solve.iterations) +
              " iterations); estimate " + sci(r.estimate) + ", true error " +
              sci(r.functional_error));
+    if (const std::string note = fallback_note(r.solve); !note.empty()) tool.log("warning: " + note);
 
     {
       auto ph = tool.phase("write");

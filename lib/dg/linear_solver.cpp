@@ -370,6 +370,12 @@ VectorXd solve_any(const SparseMatrixCSC* csc, const BlockSparseMatrix* blk, con
 
 }  // namespace
 
+std::string fallback_note(const LinearSolveInfo& info) {
+  if (!info.fallback) return "";
+  return "the iterative solvers did not converge (" + info.solver + ", " + std::to_string(info.iterations) +
+         " iterations in all); solved directly instead: for systems like this --solver umfpack alone is faster";
+}
+
 Eigen::VectorXd solve_linear(const SparseMatrixCSC& A, const Eigen::VectorXd& b, const LinearSolverOptions& opt,
                              LinearSolveInfo* info) {
   return solve_any(&A, nullptr, b, opt, info);

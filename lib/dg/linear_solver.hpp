@@ -55,6 +55,12 @@ struct LinearSolveInfo {
   bool fallback = false;          ///< auto fell back to the direct solver
 };
 
+/// When `info` is a fall-back to the direct solver: one sentence saying so, for a tool's
+/// "warning: " line (the adaptive loop keeps those in its table's `warnings`); else "". A
+/// fall-back costs the iterations spent first, so a system that falls back is solved faster by
+/// the direct solver alone.
+std::string fallback_note(const LinearSolveInfo& info);
+
 /// Name <-> kind ("umfpack", ...). parse throws InputError listing the valid names.
 LinearSolverKind parse_linear_solver(const std::string& name);
 std::string linear_solver_name(LinearSolverKind kind);

@@ -65,3 +65,16 @@ TEST_CASE("direct solvers: a matrix singular up to rounding is an error, not an 
     CHECK(!what.empty());
   }
 }
+
+TEST_CASE("fallback_note: a fall-back to the direct solver is said, with its chain and iterations; else nothing") {
+  LinearSolveInfo info;
+  info.solver = "gmres-2level";
+  info.iterations = 12;
+  CHECK(fallback_note(info).empty());
+  info.solver = "gmres-2level->gmres-bilu0->umfpack";
+  info.iterations = 320;
+  info.fallback = true;
+  const std::string s = fallback_note(info);
+  CHECK(s.find("gmres-2level->gmres-bilu0->umfpack, 320 iterations") != std::string::npos);
+  CHECK(s.find("--solver umfpack") != std::string::npos);
+}
