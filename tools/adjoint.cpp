@@ -53,7 +53,9 @@ int main(int argc, char** argv) {
                  "first: the cells sorted along -c, or along y when c = 0, as dgsolve orders them; independent "
                  "of the file's cell order) or mesh (the file's order)")
       ->capture_default_str();
-  app.add_option("--penalty", opt.dg.penalty_factor, "SIPG penalty factor, as given to dgsolve")
+  app.add_option("--penalty", opt.dg.penalty_factor,
+                 "SIPG penalty factor, as given to dgsolve (the fine space takes factor p/(p+2) on interior faces, "
+                 "the primal's sigma; keep it >= 5, docs/adjoint.md)")
       ->capture_default_str();
 
   return tool.run(argc, argv, [&] {

@@ -113,9 +113,9 @@ Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, con
 
 DGOptions fine_dg_options(const DGOptions& primal, int p) {
   DGOptions o = primal;
-  // Dirichlet faces keep the fine space's own penalty: there the weak boundary mismatch is a
-  // real local error (what a functional on a Dirichlet boundary measures), not a pair of
-  // cancelling terms
+  // Dirichlet faces keep the fine space's own penalty: there the term (sigma_fine - sigma_H)
+  // (u_H - g) psi has no neighbour to cancel against and keeps the weak boundary mismatch (what a
+  // functional on a Dirichlet boundary measures) in the indicators — a heuristic proportion
   if (o.boundary_penalty_factor < 0) o.boundary_penalty_factor = primal.penalty_factor;
   o.penalty_factor = primal.penalty_factor * p / (p + 2);  // interior faces: factor' (p+1)(p+2) = factor p(p+1)
   return o;
