@@ -67,11 +67,9 @@ Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, con
   Eigen::VectorXd gs = g;
   scale_system(A, gs);
   LinearSolverOptions o = opt.solver;
-  // Auto = Flow: a geometric order, as dgsolve's (lib/dg/solve.cpp), so that the block ILU does
-  // not depend on the file's cell order; with c = 0 dgsolve's sweep in y
-  const bool flow = opt.ordering != AdjointOrdering::Mesh;
-  if (flow && o.block_order.empty())
-    o.block_order = downwind_order(mesh, c.isZero(0.0) ? Eigen::Vector2d(1e-3, 1.0) : Eigen::Vector2d(-c));
+  // Auto = Flow: dgsolve's geometric order with the flow reversed (lib/dg/solve.hpp sweep_order),
+  // so that the block ILU does not depend on the file's cell order
+  if (opt.ordering != AdjointOrdering::Mesh && o.block_order.empty()) o.block_order = sweep_order(mesh, -c);
   // Pure advection in the downstream-first order: A^T is block lower triangular, one exact
   // block sweep solves it (adjoint/block_sweep.hpp).
   if (o.kind == LinearSolverKind::Auto && pure_advection && !o.block_order.empty()) {

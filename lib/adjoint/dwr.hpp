@@ -98,15 +98,17 @@ void add_dwr_fields(Mesh& mesh, const DWRResult& r);
 /// The discretisation options of the fine (degree p + 1) space for a primal solved with
 /// `primal` at degree p: the same, with the primal's SIPG penalty sigma = factor p(p+1) n^T D n
 /// / h_F on interior faces (factor scaled by p / (p + 2)), so that the fine form restricted to
-/// the primal's space V_H is the primal's form there; Dirichlet faces keep the fine space's own
-/// penalty (a heuristic: the weak boundary mismatch stays in the indicators in the proportion
-/// (p+2)/p, docs/adjoint.md). Keep penalty_factor >= 5: the fine interior factor is lower. Then R_h(u_H)(v_H) = 0 for every v_H in V_H supported on one
-/// cell (Galerkin orthogonality, up to the finer quadrature), which the cell indicators
+/// the primal's space V_H is the primal's form there. Then R_h(u_H)(v_H) = 0 for every v_H in
+/// V_H supported on one cell off the Dirichlet faces (Galerkin orthogonality, up to the finer
+/// quadrature), which the cell indicators
 /// eta_k = |psi_k^T R_k| rely on: with the fine space's own penalty (p+1)(p+2) the penalty
 /// mismatch gave each cell a term (sigma_fine - sigma_H) [u_H] . psi that cancels between
 /// neighbours — sum_k eta_k up to 1e5 x |estimate| where the adjoint is O(1) (a functional on a
 /// natural boundary) and goal-oriented loops 3-20x worse than uniform refinement
 /// (docs/adjoint.md, "Cell indicators"). No effect without diffusion (sigma ~ n^T D n).
+/// Dirichlet faces keep the fine space's own penalty (a heuristic: the weak boundary mismatch
+/// stays in the indicators in the proportion (p+2)/p). Keep penalty_factor >= 5: the fine
+/// interior factor is lower.
 DGOptions fine_dg_options(const DGOptions& primal, int p);
 
 /// Computes the DWR estimate for the degree-p DG vector U (#cells (p+1)^2) on `mesh` for case

@@ -26,6 +26,10 @@ std::vector<int> downwind_order(const Mesh& mesh, const Eigen::Vector2d& c) {
   return order;
 }
 
+std::vector<int> sweep_order(const Mesh& mesh, const Eigen::Vector2d& c) {
+  return downwind_order(mesh, c.isZero(0.0) ? Eigen::Vector2d(1e-3, 1.0) : c);
+}
+
 DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& opt) {
   DGSolveResult r;
   check_case_finite(cs, mesh);
@@ -53,8 +57,7 @@ DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& o
   // Elimination order of the block ILU: downwind along c (exact for pure upwind advection), or
   // a sweep in y when c = 0. A geometric order matters on unstructured meshes, whose file order
   // is arbitrary: 44 -> 15 iterations on examples/meshes/unstructured_square.msh.
-  if (so.block_order.empty())
-    so.block_order = downwind_order(mesh, cs.advection.isZero(0.0) ? Eigen::Vector2d(1e-3, 1.0) : cs.advection);
+  if (so.block_order.empty()) so.block_order = sweep_order(mesh, cs.advection);
   if (csc)
     scale_system(A, b);
   else

@@ -38,6 +38,10 @@ struct DGSolveResult {
 /// order that makes block ILU nearly exact for upwind advection. Empty when c = 0.
 std::vector<int> downwind_order(const Mesh& mesh, const Eigen::Vector2d& c);
 
+/// The block ILU's elimination order of dgsolve and adjoint: downwind_order along c, or a sweep
+/// in y when c = 0 (a geometric order: the file's cell order of an adapted mesh is arbitrary).
+std::vector<int> sweep_order(const Mesh& mesh, const Eigen::Vector2d& c);
+
 /// Solves the case on the mesh. Throws InputError (bad mesh / degree / boundary names) or
 /// NumericalError (singular system).
 DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& opt);
