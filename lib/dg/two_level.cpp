@@ -35,7 +35,8 @@ VertexCoarseSpace make_vertex_coarse_space(const Mesh& mesh, int p) {
 struct TwoLevelPreconditioner::Impl {
   const BlockSparseMatrix* A = nullptr;
   VertexCoarseSpace coarse;
-  BlockILU0 ilu;
+  BlockILU0 ilu;       ///< pre-smoother: elimination in the given order
+  BlockILU0 ilu_back;  ///< post-smoother: the same order reversed
   Eigen::SparseMatrix<double> Ac;  // UmfPackLU keeps a reference to its matrix
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
   bool post = true;
@@ -53,6 +54,14 @@ void TwoLevelPreconditioner::compute(const BlockSparseMatrix& A, const VertexCoa
   I.coarse = coarse;
   I.post = post_smooth;
   I.ilu.compute(A, order);
+  if (post_smooth) {
+    std::vector<int> back(order.rbegin(), order.rend());
+    if (back.empty()) {
+      back.resize(static_cast<size_t>(A.block_rows()));
+      for (size_t i = 0; i < back.size(); ++i) back[i] = static_cast<int>(back.size() - 1 - i);
+    }
+    I.ilu_back.compute(A, back);
+  }
 
   // A_c = P^T A P, block by block: (S^T A_IJ S) scattered to the vertices of I and J.
   const int n = A.block_rows(), nb = A.block_size();
@@ -117,7 +126,7 @@ void TwoLevelPreconditioner::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z)
   I.A->multiply(z, t);
   rr = r - t;
   Eigen::VectorXd w;
-  I.ilu.apply(rr, w);
+  I.ilu_back.apply(rr, w);
   z += w;
 }
 
