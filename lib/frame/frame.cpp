@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "io/msh.hpp"
+#include "mesh/canonical.hpp"
 #include "mesh/label.hpp"
 
 namespace quadapt {
@@ -124,7 +125,14 @@ Frame frame_from_mesh(const Mesh& m, const std::string& path, std::optional<Size
 }
 
 Frame read_frame(const std::string& path, std::optional<SizeConvention> convention) {
-  return frame_from_mesh(read_valid_msh(path, ValidateOptions::fields({"Vinv"})), path, convention);
+  Frame f = frame_from_mesh(read_valid_msh(path, ValidateOptions::fields({"Vinv"})), path, convention);
+  // validated in the file's numbering (messages name its cells), then put in canonical order
+  Renumbering r;
+  f.mesh = canonical_order(f.mesh, &r);
+  std::vector<Mat2> M(f.M.size());
+  for (size_t c = 0; c < M.size(); ++c) M[c] = f.M[static_cast<size_t>(r.old_cell[c])];
+  f.M = std::move(M);
+  return f;
 }
 
 void set_frame_field(Mesh& m, const std::vector<Mat2>& M) {

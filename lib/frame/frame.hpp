@@ -88,7 +88,10 @@ double cells_for_complexity(double complexity, int degree);
 /// (stated_convention). Validates: the field present with 9 components and one value per cell,
 /// every M finite and non-singular. Throws InputError("path: ...") naming the cell at fault.
 Frame frame_from_mesh(const Mesh& m, const std::string& path, std::optional<SizeConvention> convention = {});
-/// Reads and validates a frame file (read_valid_msh + frame_from_mesh).
+/// Reads and validates a frame file (read_valid_msh + frame_from_mesh), then puts the frame in
+/// the canonical order of mesh/canonical.hpp: a renumbered file gives the same Frame, so the
+/// tools' outputs do not depend on the file's numbering (validation messages name the file's
+/// own cell numbers).
 Frame read_frame(const std::string& path, std::optional<SizeConvention> convention = {});
 
 /// Sets the field "Vinv" (quadapt convention) and the $FrameConvention tag of m.

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
+#include <tuple>
 
 namespace quadapt::lpcvt {
 
@@ -88,9 +90,33 @@ std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& 
     VH vh;
   };
   std::deque<Item> queue;
-  // seeds: integration cells' centroids, finest metric first
-  std::vector<std::pair<double, int>> order;
-  for (int q = 0; q < bg.num_cells(); ++q) order.emplace_back(-std::abs(bg.cell(q).M.determinant()), q);
+  // Seeds: integration cells' centroids, finest metric first. Ties (a constant frame: every
+  // cell) go to the smallest coordinates along the cell's own frame axes (v, then w), so a
+  // rotated or mirrored problem picks the mapped seed — not the first cell in the background's
+  // order, which does not turn with the problem (tests/cli/loop_rotation.sh). Both keys are
+  // rounded (relative 1e-9 of |det M|, 1e-9 of the domain's width) so that the rounding of a
+  // turned frame does not decide. The cell index breaks what is left.
+  double width = 0;
+  {
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::max()), hi = -lo;
+    for (int q = 0; q < bg.num_cells(); ++q)
+      for (int k = 0; k < bg.cell(q).nv; ++k) {
+        lo = lo.cwiseMin(bg.cell(q).v[k]);
+        hi = hi.cwiseMax(bg.cell(q).v[k]);
+      }
+    width = std::max((hi - lo).norm(), 1e-300);
+  }
+  auto rounded = [](double x, double unit) { return std::round(x / unit); };
+  std::vector<std::tuple<double, double, double, int>> order;
+  for (int q = 0; q < bg.num_cells(); ++q) {
+    const IntegrationCell& ic = bg.cell(q);
+    Vec2 y = Vec2::Zero();
+    for (int k = 0; k < ic.nv; ++k) y += ic.v[k] / ic.nv;
+    const Mat2 V = ic.M.inverse();
+    const Vec2 v = V.col(0).normalized(), w = V.col(1).normalized();
+    order.emplace_back(-rounded(std::log(std::abs(ic.M.determinant())), 1e-9), rounded(y.dot(v), 1e-9 * width),
+                       rounded(y.dot(w), 1e-9 * width), q);
+  }
   std::sort(order.begin(), order.end());
   size_t next_seed = 0;
   while (static_cast<int>(out.size()) < max_points) {
@@ -98,7 +124,7 @@ std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& 
       // the next seed that is not crowded
       bool found = false;
       while (next_seed < order.size() && !found) {
-        const int q = order[next_seed++].second;
+        const int q = std::get<3>(order[next_seed++]);
         const IntegrationCell& ic = bg.cell(q);
         Vec2 y = Vec2::Zero();
         for (int k = 0; k < ic.nv; ++k) y += ic.v[k] / ic.nv;

@@ -245,7 +245,10 @@ MinimizeResult minimize_energy(const Background& bg, std::vector<Vec2>& sites, i
       g = gp;
       fx = fp;
       const bool tiny = g.lpNorm<Eigen::Infinity>() <= 100 * opt.gtol;
-      if (tiny || (recent.size() >= 6 && stagnated(5, 1e-9))) {
+      // stagnant over the last five accepted iterates, or all of them when fewer (a lattice start
+      // that is already the optimum: the same energy to the last digit from the first iterate)
+      const int span = std::min(5, static_cast<int>(recent.size()) - 1);
+      if (tiny || (span >= 2 && stagnated(span, 1e-9))) {
         res.stop = tiny ? "line search at rounding level" : "line search, energy stagnant";
         res.converged = true;
         break;

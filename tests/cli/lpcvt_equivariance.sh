@@ -2,7 +2,7 @@
 # CLI test: the L_p-CVT chain does not depend on the coordinate axes. A 10:1 frame at 30 degrees
 # on the unit square, and the same problem rotated by 90 degrees about the square's centre (the
 # frame at 120 degrees) and mirrored in x = 1/2 (the frame at 150 degrees). The lattice start
-# grows from the finest background cell (ties: the first in the file), so one cell's metric is
+# grows from the finest background cell (ties: the smallest coordinates along the frame's axes), so one cell's metric is
 # made finer by 1e-6 and that cell is mapped with the problem; then lpcvt's points and
 # triangles and recombine's quads must be the mapped ones (to 1e-9), and quadsmooth's mesh must
 # have the same cells, the same irregular vertices and the same metric figures (quadsmooth's

@@ -12,8 +12,13 @@ L-shape) and per cell $ElementData "Vinv" = V^-1, V = R(theta) diag(h1, h2), 9 c
     (circles about the origin: on the unit square a quarter-circle band meeting two walls at right
     angles; isotropic h1 far from it).
   --finer-cell K: the metric of the cell with element tag K finer by 1e-6 (relative), so that
-  lpcvt's lattice start grows from that cell (the finest first; ties: the first in the file) —
+  lpcvt's lattice start grows from that cell (the finest first; ties: the smallest coordinates along
+  the frame's axes) —
   the lattice's phase against the walls (docs/quad-quality.md, "The lattice's phase").
+  --shuffle SEED: the same frame with its nodes and cells listed in a random order (seeded) and
+  each quad's vertex list starting at a random corner (counter-clockwise kept): tools that read
+  frames must give the same outputs (mesh/canonical.hpp). --finer-cell and --corrupt-cell name
+  cells by their unshuffled tags.
   --corrupt nan|singular|none: damage one cell's frame (bad-input tests): the cell with element
   tag --corrupt-cell K (default 1; tags are 1..cells in file order, rows from the bottom).
 """
@@ -38,6 +43,7 @@ def main():
     ap.add_argument("--philip", action="store_true", help="no $FrameConvention section (read as PHiLiP's sizes)")
     ap.add_argument("--corrupt", choices=["none", "nan", "singular", "nofield"], default="none")
     ap.add_argument("--corrupt-cell", type=int, default=1)
+    ap.add_argument("--shuffle", type=int, default=0, help="list nodes and cells in a random order (this seed)")
     ap.add_argument("--finer-cell", type=int, default=0, help="make this cell's metric finer by 1e-6 (the lattice seed)")
     a = ap.parse_args()
     n = a.n
@@ -82,6 +88,22 @@ def main():
         frames[a.corrupt_cell - 1] = [float("nan")] * 4
     elif a.corrupt == "singular":
         frames[a.corrupt_cell - 1] = [1.0, 2.0, 2.0, 4.0]
+    if a.shuffle:
+        import random
+        rng = random.Random(a.shuffle)
+        node_order = list(range(len(nodes)))
+        rng.shuffle(node_order)  # new position -> old node
+        new_of = {old: new for new, old in enumerate(node_order)}
+        nodes = [nodes[old] for old in node_order]
+        cell_order = list(range(len(cells)))
+        rng.shuffle(cell_order)
+        rotated = []
+        for old in cell_order:
+            q = [new_of[v] for v in cells[old]]
+            r = rng.randrange(4)
+            rotated.append(tuple(q[r:] + q[:r]))
+        cells = rotated
+        frames = [frames[old] for old in cell_order]
     with open(a.out, "w") as f:
         f.write("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n")
         f.write(f"$Nodes\n1 {len(nodes)} 1 {len(nodes)}\n2 1 0 {len(nodes)}\n")
