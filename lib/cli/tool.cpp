@@ -13,6 +13,7 @@
 #include "cli/option_ranges.hpp"
 #include "core/atomic_file.hpp"
 #include "core/path_guard.hpp"
+#include "core/signal_cleanup.hpp"
 
 namespace quadapt {
 
@@ -131,6 +132,8 @@ void Tool::write_report() {
 int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   start_ = std::chrono::steady_clock::now();
   start_date_ = utc_now_iso8601();
+  // an interrupt removes the temporaries and child processes the library registered
+  install_signal_cleanup();
   std::ostringstream cmd;
   for (int i = 0; i < argc; ++i) cmd << (i ? " " : "") << argv[i];
   report_["command"] = cmd.str();
