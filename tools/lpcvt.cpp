@@ -13,6 +13,7 @@
 #include "io/msh.hpp"
 #include "gmsh/geometry.hpp"
 #include "lpcvt/run.hpp"
+#include "quad/mesh_utils.hpp"
 
 int main(int argc, char** argv) {
   using namespace quadapt;
@@ -170,6 +171,7 @@ int main(int argc, char** argv) {
         bg = saddle_background(grid, sampled, job, tool.report(), log);
       } else {
         const Frame f = read_frame(in, convention == "auto" ? std::nullopt : std::optional(parse_size_convention(convention)));
+        check_simple_boundary(f.mesh, in);  // a pinched domain: named here, not as a broken output
         tool.option("convention", to_string(f.source));
         bg = frame_background(f, job, tool.report(), log);
         check_point_budget(bg, job, in);

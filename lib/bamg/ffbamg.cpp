@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -49,15 +50,28 @@ struct TempDir {
   }
 };
 
-std::string tail_of(const fs::path& p, size_t max_chars = 600) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  std::string t = s.str();
-  if (t.size() > max_chars) t = "..." + t.substr(t.size() - max_chars);
-  for (char& c : t)
-    if (c == '\n') c = ' ';
-  return t;
+// One line of ffbamg's output that says what went wrong: the first that mentions an error
+// ("Err mesh vertices 290 is not in a triangle"), else the last non-empty one; blanks collapsed,
+// at most 160 characters (its whole log ran to ~500 characters of banner and C++ abort text).
+std::string cause_in(const fs::path& log) {
+  std::ifstream f(log);
+  std::string line, first_error, last;
+  while (std::getline(f, line)) {
+    std::string t;
+    for (char c : line) {
+      if (!std::isspace(static_cast<unsigned char>(c))) t += c;
+      else if (!t.empty() && t.back() != ' ') t += ' ';
+    }
+    while (!t.empty() && t.back() == ' ') t.pop_back();
+    if (t.empty()) continue;
+    last = t;
+    if (first_error.empty() && (t.find("Err") != std::string::npos || t.find("rror") != std::string::npos))
+      first_error = t;
+  }
+  std::string cause = first_error.empty() ? last : first_error;
+  if (cause.empty()) return "no output";
+  if (cause.size() > 160) cause = cause.substr(0, 157) + "...";
+  return cause;
 }
 }  // namespace
 
@@ -128,14 +142,14 @@ FfbamgResult run_ffbamg(const InriaMesh& background, const std::vector<Eigen::Ma
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::exists(out)) {
     std::string how = WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
                                         : "signal " + std::to_string(WTERMSIG(status));
-    throw ExternalError("ffbamg failed (" + how + "): " + tail_of(log));
+    throw ExternalError("ffbamg failed (" + how + "): " + cause_in(log));
   }
   try {
     res.mesh = read_inria_mesh(out.string());
   } catch (const InputError& e) {
     throw ExternalError(std::string("ffbamg wrote an unreadable mesh: ") + e.what());
   }
-  if (res.mesh.triangles.empty()) throw ExternalError("ffbamg produced no triangles: " + tail_of(log));
+  if (res.mesh.triangles.empty()) throw ExternalError("ffbamg produced no triangles: " + cause_in(log));
   return res;
 }
 

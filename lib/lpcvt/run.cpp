@@ -198,7 +198,7 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
     rep["phase"] = pr.kept;
   }
   const TriangulationCheck chk = check_triangulation(r.mesh);
-  if (!chk.ok()) throw NumericalError("lpcvt: invalid output triangulation: " + chk.summary());
+  if (!chk.ok()) throw NumericalError("invalid output triangulation: " + chk.summary());
   const EnergyTimers& et = r.energy_timers;
   rep["energy_seconds"] = {{"delaunay", et.delaunay}, {"integrate", et.integrate}, {"evaluations", et.evaluations},
                            {"updates", et.updates}, {"rebuilds", et.rebuilds}, {"metric_graph_carried", et.carried},
