@@ -54,9 +54,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "quadapt", "philip"}));
   app.add_flag("--arithmetic-mean", arithmetic, "Node metric = arithmetic (not log-Euclidean) mean of the cells'");
   app.add_option("--gradation", opt.ffbamg.gradation,
-                 "BAMG metric smoothing: bound on the size ratio between neighbours (ffbamg -ratio; 0 = none)")
-      ->capture_default_str()
-      ->check(NonNegativeValue);
+                 "BAMG metric smoothing: bound on the size ratio between neighbours (ffbamg -ratio; 0 = none; "
+                 "BAMG ignores ratios below 1.1)")
+      ->capture_default_str();  // range: lib/cli/option_ranges.cpp
   app.add_flag("--no-split-boundary-edges", no_split_edges,
                "Do not split interior edges joining two boundary nodes (ffbamg -splitpbedge is the default)");
   app.add_option("--max-vertices", opt.ffbamg.max_vertices, "BAMG's vertex limit (ffbamg -nbv)")

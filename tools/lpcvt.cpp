@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   app.add_option("--lattice-phase", lattice_phase, "Lattice start: move the lattice by these fractions of a lattice cell "
                  "(two numbers in [0, 1)) along the axes the walls do not register — a single phase, e.g. the one a "
                  "--phases run reports as kept")
-      ->expected(2)->check(CLI::Range(0.0, 1.0));
+      ->expected(2);  // each in [0, 1): lib/cli/option_ranges.cpp (1 is phase 0 again)
   app.add_option("--lp-exponent", opt.p, "L_p exponent p of the energy (eq. 4.1) and of eq. 4.12")
       ->capture_default_str()->check(CLI::Range(2.0, 32.0));
   app.add_option("--boundary-norm", opt.boundary_norm, "q of the wall points' metric length |M tau|_q: 2 = the thesis's "

@@ -85,11 +85,14 @@ OutputTarget resolve_output(const std::string& path) {
   if (::stat(p.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) throw InputError(path, "is a directory; give a file name");
     if (!S_ISREG(st.st_mode)) return {OutputTarget::Kind::Special, path};
-    return {OutputTarget::Kind::Regular, p.string()};
   }
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   if (!fs::is_directory(dir, ec))
-    throw InputError(path, "directory " + dir.string() + " does not exist");
+    throw InputError(path, fs::exists(dir, ec) ? dir.string() + " is not a directory"
+                                               : "directory " + dir.string() + " does not exist");
+  // the temporary is made there: checked now, before any work (it failed only at the end)
+  if (::access(dir.c_str(), W_OK | X_OK) != 0)
+    throw InputError(path, "directory " + dir.string() + " is not writable (" + std::strerror(errno) + ")");
   return {OutputTarget::Kind::Regular, p.string()};
 }
 

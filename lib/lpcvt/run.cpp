@@ -188,6 +188,12 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
   const bool lattice = opt.seed_mode == SeedMode::Lattice && !opt.multilevel && !bg.is_analytic();
   const int phases = !lattice ? 1 : job.phases > 0 ? job.phases : auto_phases(bg);
   rep["options"]["phases"] = phases;
+  // the effective start and preconditioning (their defaults differ between frames and --analytic)
+  rep["options"]["init"] = opt.multilevel ? "multilevel"
+                           : opt.seed_mode == SeedMode::Lattice ? "lattice"
+                           : opt.seed_mode == SeedMode::Density ? "density"
+                                                                : "uniform";
+  rep["options"]["precondition"] = opt.lbfgs.precondition;
   LpcvtResult r;
   if (phases == 1) {
     r = run_lpcvt(bg, opt, log);
