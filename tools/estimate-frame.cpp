@@ -61,6 +61,17 @@ int main(int argc, char** argv) {
     tool.option("q", opt.q);
     tool.option("patch", patch);
     tool.option("max_anisotropy", opt.max_anisotropy);
+    // parsed before reading: a mistake in it is the option's, named as such ("--exact 'x*':
+    // column 3: ..."; it said only "column 3: expression ends unexpectedly")
+    Expr e;
+    if (!exact.empty()) {
+      check_degree(p_exact, "-p");
+      try {
+        e = parse_expression(exact);
+      } catch (const InputError& err) {
+        throw InputError("--exact '" + exact + "'", err.what());
+      }
+    }
     Mesh sol;
     {
       auto ph = tool.phase("read");
@@ -68,8 +79,6 @@ int main(int argc, char** argv) {
       vo.allow_curved = true;  // reconstructed on the curved map (docs/curved.md)
       sol = read_valid_msh(in, vo);
       if (!exact.empty()) {
-        check_degree(p_exact, "-p");
-        Expr e = parse_expression(exact);
         sol.set_field(interpolate_dg(sol, p_exact, [&](double x, double y) {
           const double v = evaluate(e, x, y);
           if (!std::isfinite(v))

@@ -13,6 +13,7 @@
 #include "io/msh.hpp"
 #include "gmsh/geometry.hpp"
 #include "lpcvt/run.hpp"
+#include "quad/mesh_utils.hpp"
 
 int main(int argc, char** argv) {
   using namespace quadapt;
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
   app.add_option("--lattice-phase", lattice_phase, "Lattice start: move the lattice by these fractions of a lattice cell "
                  "(two numbers in [0, 1)) along the axes the walls do not register — a single phase, e.g. the one a "
                  "--phases run reports as kept")
-      ->expected(2)->check(CLI::Range(0.0, 1.0));
+      ->expected(2);  // each in [0, 1): lib/cli/option_ranges.cpp (1 is phase 0 again)
   app.add_option("--lp-exponent", opt.p, "L_p exponent p of the energy (eq. 4.1) and of eq. 4.12")
       ->capture_default_str()->check(CLI::Range(2.0, 32.0));
   app.add_option("--boundary-norm", opt.boundary_norm, "q of the wall points' metric length |M tau|_q: 2 = the thesis's "
@@ -170,6 +171,7 @@ int main(int argc, char** argv) {
         bg = saddle_background(grid, sampled, job, tool.report(), log);
       } else {
         const Frame f = read_frame(in, convention == "auto" ? std::nullopt : std::optional(parse_size_convention(convention)));
+        check_simple_boundary(f.mesh, in);  // a pinched domain: named here, not as a broken output
         tool.option("convention", to_string(f.source));
         bg = frame_background(f, job, tool.report(), log);
         check_point_budget(bg, job, in);

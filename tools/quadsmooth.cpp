@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
   app.add_option("--frame-gradation", fit_opt.gradation,
                  "Shape fit, --fit-frame meshed/capped: size gradation of the filter, growth per unit metric "
                  "length (lpcvt --gradation; 0 = none)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str();  // range: lib/cli/option_ranges.cpp (0 or > 1, checked before reading)
   app.add_option("--frame", frame_path,
                  "Frame file (background mesh with the cell field Vinv): smooth in its metric space")
       ->check(CLI::ExistingFile);
@@ -96,21 +96,19 @@ int main(int argc, char** argv) {
     tool.output(out);
     if (method.empty()) method = frame_path.empty() ? "angle" : "shape";
     if (method == "shape" && frame_path.empty())
-      throw InputError(in, "--method shape needs --frame FRAME.msh (the squares are the frame's)");
+      throw InputError("", "--method shape needs --frame FRAME.msh (the squares are the frame's)");
     if (sweeps >= 0) opt.sweeps = shape.sweeps = sweeps;
     if (tolerance >= 0) opt.tolerance = shape.tolerance = tolerance;
     shape.max_halvings = opt.max_halvings;
     if (method != "shape" && tool.app().count("--corner-metric"))
-      throw InputError(in, "--corner-metric applies to the shape fit only (--method shape with --frame)");
+      throw InputError("", "--corner-metric applies to the shape fit only (--method shape with --frame)");
     shape.cell_metric = corner_metric == "cell";
     if (method != "shape" && tool.app().count("--walls"))
-      throw InputError(in, "--walls applies to the shape fit only (--method shape with --frame)");
+      throw InputError("", "--walls applies to the shape fit only (--method shape with --frame)");
     shape.slide_walls = walls == "slide";
     for (const char* o : {"--fit-frame", "--frame-smooth", "--frame-gradation"})
       if (method != "shape" && tool.app().count(o))
-        throw InputError(in, std::string(o) + " applies to the shape fit only (--method shape with --frame)");
-    if (fit_opt.gradation != 0 && !(fit_opt.gradation > 1))
-      throw InputError(in, "--frame-gradation must be > 1 (or 0: none)");
+        throw InputError("", std::string(o) + " applies to the shape fit only (--method shape with --frame)");
     fit_opt.mode = lpcvt::parse_fit_frame(fit, in);
     if (method == "shape") {
       tool.option("corner_metric", corner_metric);

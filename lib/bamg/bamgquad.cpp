@@ -6,11 +6,36 @@
 #include "bamg/frame_metric.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "quad/mesh_utils.hpp"
 
 namespace quadapt {
 
+namespace {
+// The mesh with only the nodes a cell or a boundary edge uses, renumbered in order. ffbamg
+// aborts on a background vertex in no triangle ("Err mesh vertices N is not in a triangle",
+// exit 2 with its crash dump), where every other tool accepts such a node.
+Mesh without_unused_nodes(const Mesh& in) {
+  std::vector<int> to(in.nodes.size(), -1);
+  for (const Cell& c : in.cells)
+    for (int k = 0; k < c.nv; ++k) to[c.v[k]] = 0;
+  for (const BoundaryEdge& e : in.boundary) to[e.v[0]] = to[e.v[1]] = 0;
+  Mesh out = in;
+  out.nodes.clear();
+  for (size_t v = 0; v < in.nodes.size(); ++v)
+    if (to[v] == 0) {
+      to[v] = static_cast<int>(out.nodes.size());
+      out.nodes.push_back(in.nodes[v]);
+    }
+  for (Cell& c : out.cells)
+    for (int k = 0; k < c.nv; ++k) c.v[k] = to[c.v[k]];
+  for (BoundaryEdge& e : out.boundary) e.v = {to[e.v[0]], to[e.v[1]]};
+  return out;
+}
+}  // namespace
+
 Mesh bamg_quad(const Frame& fr, const BamgQuadOptions& opt, BamgQuadStats* stats, const std::string& path) {
-  const Mesh& frame = fr.mesh;
+  const Mesh frame = without_unused_nodes(fr.mesh);
+  check_simple_boundary(frame, path);
   if (frame.cells.empty()) throw InputError(path, "the frame mesh has no cells");
   const std::vector<Eigen::Matrix2d> M = fr.oriented();
   BamgQuadStats st;
@@ -51,7 +76,12 @@ Mesh bamg_quad(const Frame& fr, const BamgQuadOptions& opt, BamgQuadStats* stats
     while (st.runs < max_runs) {
       std::vector<Eigen::Matrix2d> scaled = vmetric;
       for (auto& m : scaled) m *= factor;
-      FfbamgResult r = run_ffbamg(bg, scaled, opt.ffbamg);
+      FfbamgResult r;
+      try {
+        r = run_ffbamg(bg, scaled, opt.ffbamg);
+      } catch (const ExternalError& e) {
+        throw ExternalError(path + ": " + e.what());  // the input named (docs/exit-codes.md)
+      }
       const double ratio = per_triangle * static_cast<double>(r.mesh.triangles.size()) / st.target_complexity;
       if (st.runs == 0) st.first_ratio = ratio;
       ++st.runs;

@@ -1,10 +1,13 @@
 #include "bamg/ffbamg.hpp"
 
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -12,8 +15,10 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "core/error.hpp"
+#include "core/signal_cleanup.hpp"
 
 extern char** environ;
 
@@ -22,13 +27,22 @@ namespace quadapt {
 namespace {
 namespace fs = std::filesystem;
 
-// A private temporary directory, removed with everything in it on destruction.
+// A private temporary directory, removed with everything in it on destruction. On SIGINT /
+// SIGTERM (core/signal_cleanup) the handler unlinks the files named by file() and removes it.
 struct TempDir {
   fs::path path;
+  SignalCleanup on_signal;
+  std::vector<SignalCleanup> files_on_signal;
   TempDir() {
     std::string tmpl = (fs::temp_directory_path() / "quadapt-ffbamg-XXXXXX").string();
     if (!mkdtemp(tmpl.data())) throw ExternalError("cannot create a temporary directory for ffbamg");
     path = tmpl;
+    on_signal = SignalCleanup::directory(path.string());
+  }
+  /// The path of `name` in the directory, registered for removal on a signal.
+  fs::path file(const std::string& name) {
+    files_on_signal.push_back(SignalCleanup::file((path / name).string()));
+    return path / name;
   }
   ~TempDir() {
     std::error_code ec;
@@ -36,15 +50,28 @@ struct TempDir {
   }
 };
 
-std::string tail_of(const fs::path& p, size_t max_chars = 600) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  std::string t = s.str();
-  if (t.size() > max_chars) t = "..." + t.substr(t.size() - max_chars);
-  for (char& c : t)
-    if (c == '\n') c = ' ';
-  return t;
+// One line of ffbamg's output that says what went wrong: the first that mentions an error
+// ("Err mesh vertices 290 is not in a triangle"), else the last non-empty one; blanks collapsed,
+// at most 160 characters (its whole log ran to ~500 characters of banner and C++ abort text).
+std::string cause_in(const fs::path& log) {
+  std::ifstream f(log);
+  std::string line, first_error, last;
+  while (std::getline(f, line)) {
+    std::string t;
+    for (char c : line) {
+      if (!std::isspace(static_cast<unsigned char>(c))) t += c;
+      else if (!t.empty() && t.back() != ' ') t += ' ';
+    }
+    while (!t.empty() && t.back() == ' ') t.pop_back();
+    if (t.empty()) continue;
+    last = t;
+    if (first_error.empty() && (t.find("Err") != std::string::npos || t.find("rror") != std::string::npos))
+      first_error = t;
+  }
+  std::string cause = first_error.empty() ? last : first_error;
+  if (cause.empty()) return "no output";
+  if (cause.size() > 160) cause = cause.substr(0, 157) + "...";
+  return cause;
 }
 }  // namespace
 
@@ -59,8 +86,8 @@ FfbamgResult run_ffbamg(const InriaMesh& background, const std::vector<Eigen::Ma
     exe = env && *env ? env : "ffbamg";
   }
   TempDir dir;
-  const fs::path bg = dir.path / "background.mesh", mtr = dir.path / "background.mtr",
-                 out = dir.path / "out.mesh", log = dir.path / "ffbamg.log";
+  const fs::path bg = dir.file("background.mesh"), mtr = dir.file("background.mtr"), out = dir.file("out.mesh"),
+                 log = dir.file("ffbamg.log");
   write_inria_mesh(background, bg.string());
   write_bamg_metric(metric, mtr.string());
 
@@ -86,27 +113,43 @@ FfbamgResult run_ffbamg(const InriaMesh& background, const std::vector<Eigen::Ma
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   const auto t0 = std::chrono::steady_clock::now();
+  // SIGINT / SIGTERM / SIGHUP held back from spawning until the child is registered below, so
+  // that an interrupt never leaves it running; the child starts with them unblocked.
+  sigset_t held, before;
+  sigemptyset(&held);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&held, sig);
+  pthread_sigmask(SIG_BLOCK, &held, &before);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setsigmask(&attr, &before);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
   pid_t pid = 0;
-  int rc = posix_spawnp(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
+  int rc = posix_spawnp(&pid, exe.c_str(), &fa, &attr, argv.data(), environ);
+  posix_spawnattr_destroy(&attr);
   posix_spawn_file_actions_destroy(&fa);
+  // killed (and waited for) by the signal handler if this process is interrupted meanwhile:
+  // it would otherwise run on, writing into a directory that is being removed
+  SignalCleanup child = rc == 0 ? SignalCleanup::child(pid) : SignalCleanup();
+  pthread_sigmask(SIG_SETMASK, &before, nullptr);
   if (rc != 0)
     throw ExternalError("cannot run '" + exe + "' (FreeFEM's BAMG; Debian package freefem++): " +
                         std::string(strerror(rc)));
   int status = 0;
   while (waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) throw ExternalError("waiting for ffbamg failed");
+  child.release();
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::exists(out)) {
     std::string how = WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
                                         : "signal " + std::to_string(WTERMSIG(status));
-    throw ExternalError("ffbamg failed (" + how + "): " + tail_of(log));
+    throw ExternalError("ffbamg failed (" + how + "): " + cause_in(log));
   }
   try {
     res.mesh = read_inria_mesh(out.string());
   } catch (const InputError& e) {
     throw ExternalError(std::string("ffbamg wrote an unreadable mesh: ") + e.what());
   }
-  if (res.mesh.triangles.empty()) throw ExternalError("ffbamg produced no triangles: " + tail_of(log));
+  if (res.mesh.triangles.empty()) throw ExternalError("ffbamg produced no triangles: " + cause_in(log));
   return res;
 }
 

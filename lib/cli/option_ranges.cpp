@@ -6,6 +6,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <regex>
+#include <sys/stat.h>
+
+#include "cli/parse_errors.hpp"
 
 namespace quadapt {
 
@@ -46,7 +50,6 @@ const std::vector<OptionRange>& option_ranges() {
       {"lpcvt",          "--scale",                 0,     kInf,  true,  false},
       {"lpcvt",          "--weight",                0,     kInf,  false, false},
       {"lpcvt",          "--initial",               0,     kInf,  false, false},
-      {"lpcvt",          "--cells-per-triangle",    0,     kInf,  true,  false},
       {"lpcvt",          "--delta",                 0,     1,     false, true},
       {"lpcvt",          "--past",                  1,     kInf,  false, false},
       {"lpcvt",          "--move-tol",              0,     kInf,  false, false},
@@ -56,6 +59,8 @@ const std::vector<OptionRange>& option_ranges() {
       {"lpcvt",          "--lmax",                  0,     kInf,  true,  false},
       {"lpcvt",          "--change-tol",            0,     1,     false, false},
       {"lpcvt",          "--ramp-after",            0,     kInf,  false, false},
+      {"lpcvt",          "--lattice-phase",         0,     1,     false, true},
+      {"quadsmooth",     "--frame-gradation",       1,     kInf,  true,  false, true},
       {"size-solve",     "--growth",                0,     kInf,  true,  false},
       {"size-solve",     "--hmin",                  0,     kInf,  false, false},
       {"size-solve",     "--hmax",                  0,     kInf,  false, false},
@@ -79,7 +84,8 @@ CLI::Validator range_check(const OptionRange& r) {
         if (ok || (r.zero_off && v == 0)) return std::string();
         return s + (r.zero_off ? " is not 0 (off) or in " : " is not in ") + interval(r);
       },
-      "", std::string("range ") + r.option);
+      // the range in --help ("--rtol FLOAT:(0, 1)"), the one that is enforced
+      (r.zero_off ? "0 or " : "") + interval(r), std::string("range ") + r.option);
 }
 
 // Deactivates the active validator of `opt` described as `description` (CLI11's own name for
@@ -99,19 +105,52 @@ void replace_validator(CLI::Option* opt, const std::string& description, const C
   }
 }
 
-// CLI::ExistingFile also accepts "-" (standard input). (Positive / non-negative checks are
-// cli/parse_errors' PositiveValue / NonNegativeValue, which the tools attach themselves.)
-void replace_cli11_checks(CLI::Option* opt) {
-  replace_validator(opt, "FILE",
-                    CLI::Validator([](std::string& s) { return s == "-" ? std::string() : CLI::ExistingFile(s); },
-                                   "FILE|-", "input file"));
+// A CLI::Range's closed interval, read back from its description ("FLOAT in [0 - 0.45]",
+// "INT in [1 - 6]"); false for any other validator.
+bool cli11_range(const CLI::Validator& v, double& lo, double& hi) {
+  static const std::regex re(R"(^[A-Z]+ in \[(\S+) - (\S+)\]$)");
+  std::smatch m;
+  const std::string d = v.get_description();
+  return std::regex_match(d, m, re) && parse_number(m[1], lo) && parse_number(m[2], hi);
+}
+
+// CLI::ExistingFile also accepts "-" (standard input), and says "FILE: no such file" the way
+// every other message names a file (cli/parse_errors: the runner prints it without the option
+// name CLI11 puts first; it said "MESH: File does not exist: FILE"). A CLI::Range says its range
+// like the table's ("--jitter: -1 is not in [0, 0.45]"; it said "Value -1 not in range 0.000000
+// to 0.450000"). (Positive / non-negative checks are cli/parse_errors' PositiveValue /
+// NonNegativeValue, which the tools attach themselves.)
+void replace_cli11_checks(CLI::Option* opt, const std::string& name) {
+  replace_validator(opt, "FILE", CLI::Validator(
+                                     [](std::string& s) {
+                                       if (s == "-") return std::string();
+                                       if (s.empty()) return std::string("empty file name \"\"");
+                                       struct stat st {};
+                                       if (::stat(s.c_str(), &st) != 0) return file_problem(s, "no such file");
+                                       if (S_ISDIR(st.st_mode)) return file_problem(s, "is a directory; give a file");
+                                       return std::string();
+                                     },
+                                     "FILE|-", "input file"));
+  for (int k = 0;; ++k) {
+    CLI::Validator* v = nullptr;
+    try {
+      v = opt->get_validator(k);
+    } catch (const CLI::OptionNotFound&) {
+      return;
+    }
+    double lo, hi;
+    if (!v->get_active() || !cli11_range(*v, lo, hi)) continue;
+    v->active(false);
+    opt->check(range_check(OptionRange{"", "", lo, hi, false, false}));
+    return;
+  }
 }
 
 void apply_option_ranges(const std::string& tool, CLI::App& app) {
   for (CLI::Option* opt : app.get_options()) {
     if (opt->get_type_size() == 0) continue;  // a flag
-    replace_cli11_checks(opt);
     const std::string name = opt->get_lnames().empty() ? "" : "--" + opt->get_lnames().front();
+    replace_cli11_checks(opt, name);
     // "FLOAT", or "FLOAT:POSITIVE", "FLOAT:FLOAT in [2 - 32]" once a tool attached a check (whose
     // comparisons a NaN passes, and an overflowing 1e400 = inf passes a lower bound)
     if (opt->get_type_name().rfind("FLOAT", 0) == 0) {

@@ -9,6 +9,9 @@
 namespace quadapt {
 
 namespace {
+// Starts a file_problem inside CLI11's "NAME: message" (a control character no path or value has).
+constexpr char kFileProblem = '\x1f';
+
 bool is_number(const std::string& s) {
   if (s.empty()) return false;
   char* end = nullptr;
@@ -28,6 +31,12 @@ CLI::Validator bound_validator(bool strict, const char* name) {
       name);
 }
 }  // namespace
+
+std::string file_problem(const std::string& file, const std::string& problem) {
+  return std::string(1, kFileProblem) + file + ": " + problem;
+}
+
+bool is_file_problem(const CLI::ParseError& e) { return std::string(e.what()).find(kFileProblem) != std::string::npos; }
 
 const CLI::Validator PositiveValue = bound_validator(true, "POSITIVE");
 const CLI::Validator NonNegativeValue = bound_validator(false, "NONNEGATIVE");
@@ -50,6 +59,7 @@ std::string parse_error_message(const CLI::App& app, int argc, char** argv, cons
   const std::string unknown = first_unknown_option(app, argc, argv);
   if (!unknown.empty()) return "unknown option " + unknown;
   std::string msg = e.what();
+  if (const size_t f = msg.find(kFileProblem); f != std::string::npos) return msg.substr(f + 1);
   static const std::regex long_number(R"(-?[0-9]+\.?[0-9]*(?:[eE][-+]?[0-9]+)?)");
   std::string out;
   auto it = std::sregex_iterator(msg.begin(), msg.end(), long_number);

@@ -15,9 +15,16 @@ namespace quadapt {
 /// (negative numbers, values like "-6,4"), are not options.
 std::string first_unknown_option(const CLI::App& app, int argc, char** argv);
 
-/// The message for a CLI11 parse error: the unknown option when there is one, else e.what()
-/// with every number longer than 12 characters reprinted in %.3e.
+/// The message for a CLI11 parse error: the unknown option when there is one, a file_problem as
+/// it is, else e.what() with every number longer than 12 characters reprinted in %.3e.
 std::string parse_error_message(const CLI::App& app, int argc, char** argv, const CLI::ParseError& e);
+
+/// A validator's message about the file it was given rather than the option ("FILE: no such
+/// file"): parse_error_message then prints it as it is, without the option name CLI11 puts
+/// first ("MESH: ..."), so that it reads "TOOL: FILE: problem" like every other file message.
+std::string file_problem(const std::string& file, const std::string& problem);
+/// Whether `e` carries a file_problem (the runner adds no "(see TOOL --help)" to it).
+bool is_file_problem(const CLI::ParseError& e);
 
 /// Validators: value > 0, value >= 0 ("must be > 0 (got -1)").
 extern const CLI::Validator PositiveValue;

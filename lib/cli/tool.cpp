@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -13,6 +14,7 @@
 #include "cli/option_ranges.hpp"
 #include "core/atomic_file.hpp"
 #include "core/path_guard.hpp"
+#include "core/signal_cleanup.hpp"
 
 namespace quadapt {
 
@@ -20,6 +22,39 @@ namespace {
 constexpr const char* kExitCodes =
     "Exit codes: 0 success; 1 failure but a valid output was saved; 2 bad input or failure, "
     "nothing written; 3 internal error.";
+
+// "--min-quality" -> "min_quality"; positionals keep their name ("MESH").
+std::string option_key(const CLI::Option& opt) {
+  std::string key = opt.get_single_name();
+  for (char& c : key)
+    if (c == '-') c = '_';
+  return key;
+}
+
+// The command-line text of an option as JSON: numbers for FLOAT / INT options, booleans for
+// flags, strings otherwise; an array when the option takes several values.
+nlohmann::json typed_option_value(const CLI::Option& opt, const std::vector<std::string>& texts) {
+  const std::string type = opt.get_type_name();
+  const bool real = type.rfind("FLOAT", 0) == 0, integer = type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0;
+  auto one = [&](const std::string& t) -> nlohmann::json {
+    char* end = nullptr;
+    if (real) {
+      const double v = std::strtod(t.c_str(), &end);
+      if (end != t.c_str() && *end == '\0') return v;
+    } else if (integer) {
+      const long long v = std::strtoll(t.c_str(), &end, 10);
+      if (end != t.c_str() && *end == '\0') return v;
+    } else if (opt.get_type_size() == 0) {
+      if (t == "true" || t == "1" || t.empty()) return true;
+      if (t == "false" || t == "0") return false;
+    }
+    return t;
+  };
+  if (texts.size() == 1) return one(texts[0]);
+  nlohmann::json a = nlohmann::json::array();
+  for (const std::string& t : texts) a.push_back(one(t));
+  return a;
+}
 
 }  // namespace
 
@@ -131,6 +166,8 @@ void Tool::write_report() {
 int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   start_ = std::chrono::steady_clock::now();
   start_date_ = utc_now_iso8601();
+  // an interrupt removes the temporaries and child processes the library registered
+  install_signal_cleanup();
   std::ostringstream cmd;
   for (int i = 0; i < argc; ++i) cmd << (i ? " " : "") << argv[i];
   report_["command"] = cmd.str();
@@ -140,26 +177,36 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   } catch (const CLI::Success& e) {  // --help, --version
     return app_.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << name_ << ": " << parse_error_message(app_, argc, argv, e) << " (see " << name_ << " --help)"
-              << std::endl;
+    std::cerr << name_ << ": " << parse_error_message(app_, argc, argv, e)
+              << (is_file_problem(e) ? "" : " (see " + name_ + " --help)") << std::endl;
     return 2;
+  }
+  // An option given as "" (`--report ""`, `--voronoi ""`) is refused, not taken for "not given"
+  // (it wrote the default report, or nothing at all, with exit 0).
+  for (const CLI::Option* opt : app_.get_options()) {
+    if (opt->get_type_size() == 0 || opt->count() == 0) continue;
+    for (const std::string& r : opt->results())
+      if (r.empty()) {
+        std::cerr << name_ << ": " << opt->get_name() << ": empty value \"\" (give a file name or value)" << std::endl;
+        return 2;
+      }
   }
   const int threads = clamp_threads(threads_);
   if (threads_ > threads) log("--threads " + std::to_string(threads_) + " is more than this machine runs; using " + std::to_string(threads));
   omp_set_num_threads(threads);
-  // Record every option's effective value (defaults included) as provenance.
+  // Record every option's value (defaults included) as provenance, typed and under the key the
+  // tools use for the effective values they record (tool.option("min_quality", 0.3) replaces
+  // "--min-quality 0.3"): one entry per option. It was the CLI11 text under the option's own
+  // spelling beside the tool's typed one ('min-quality': '0' and 'min_quality': 0.0).
   for (const CLI::Option* opt : app_.get_options()) {
     if (opt->get_name() == "--help" || opt->get_name() == "--version") continue;
-    std::string key = opt->get_single_name();
     auto res = opt->results();
     if (res.empty()) {
-      std::string def = opt->get_default_str();
-      if (!def.empty()) report_["options"][key] = def;
-    } else if (res.size() == 1) {
-      report_["options"][key] = res[0];
-    } else {
-      report_["options"][key] = res;
+      const std::string def = opt->get_default_str();
+      if (def.empty()) continue;
+      res = {def};
     }
+    report_["options"][option_key(*opt)] = typed_option_value(*opt, res);
   }
   report_["options"]["threads"] = threads;  // the effective count
   clear_protected_paths();  // one run per process; tests run several

@@ -16,6 +16,8 @@
 //   2  failure, nothing written: bad input or options (InputError, CLI parse error), or a
 //      numerical / external failure (NumericalError, ExternalError)
 //   3  internal error (a bug: any other exception)
+// SIGINT / SIGTERM / SIGHUP: the temporaries and child processes the library registered are
+// removed (core/signal_cleanup.hpp) and the tool ends by the signal (a shell's 130 / 143).
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <functional>

@@ -13,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "core/path_guard.hpp"
+#include "core/signal_cleanup.hpp"
 
 namespace fs = std::filesystem;
 
@@ -53,9 +54,15 @@ void write_special(const OutputTarget& t, const std::function<void(std::ostream&
   write_direct(out, t.path, writer);
 }
 
-// Removes the temporary on every exit path unless released.
+// Removes the temporary on every exit path unless released, and on SIGINT / SIGTERM while it
+// exists (core/signal_cleanup: the handler unlinks it).
 struct TempGuard {
   std::string path;
+  SignalCleanup on_signal = SignalCleanup::file(path);
+  void release() {
+    path.clear();
+    on_signal.release();
+  }
   ~TempGuard() {
     std::error_code ec;
     if (!path.empty()) fs::remove(path, ec);
@@ -78,11 +85,14 @@ OutputTarget resolve_output(const std::string& path) {
   if (::stat(p.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) throw InputError(path, "is a directory; give a file name");
     if (!S_ISREG(st.st_mode)) return {OutputTarget::Kind::Special, path};
-    return {OutputTarget::Kind::Regular, p.string()};
   }
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   if (!fs::is_directory(dir, ec))
-    throw InputError(path, "directory " + dir.string() + " does not exist");
+    throw InputError(path, fs::exists(dir, ec) ? dir.string() + " is not a directory"
+                                               : "directory " + dir.string() + " does not exist");
+  // the temporary is made there: checked now, before any work (it failed only at the end)
+  if (::access(dir.c_str(), W_OK | X_OK) != 0)
+    throw InputError(path, "directory " + dir.string() + " is not writable (" + std::strerror(errno) + ")");
   return {OutputTarget::Kind::Regular, p.string()};
 }
 
@@ -100,7 +110,7 @@ void atomic_write(const std::string& path, const std::function<void(std::ostream
     if (!out) throw ExternalError(path + ": write failed (disk full?)");
   }
   commit(tmp.path, t.path);
-  tmp.path.clear();
+  tmp.release();
 }
 
 void atomic_write_via_path(const std::string& path,
@@ -115,7 +125,7 @@ void atomic_write_via_path(const std::string& path,
   if (!fs::exists(tmp.path)) throw ExternalError(path + ": the writer produced no file");
   if (t.kind == OutputTarget::Kind::Regular) {
     commit(tmp.path, t.path);
-    tmp.path.clear();
+    tmp.release();
     return;
   }
   std::ifstream in(tmp.path, std::ios::binary);

@@ -228,6 +228,7 @@ class MshReader {
     c_.any_size("maximum node tag");
     m_.nodes.reserve(m_.nodes.size() + total);
     std::vector<long long> tags;
+    long long listed = 0;
     for (long long b = 0; b < nblocks; ++b) {
       const long long dim = c_.any_int("entity dimension");
       c_.any_int("entity tag");
@@ -241,7 +242,11 @@ class MshReader {
         for (int k = 0; k < extra; ++k) c_.any_real("parametric coordinates");
         add_node(tags[i], x, y, z);
       }
+      listed += n;
     }
+    // a header that disagrees with its blocks is a damaged file (it was read as the blocks say)
+    if (listed != total)
+      c_.fail("the header says " + std::to_string(total) + " nodes, but the blocks list " + std::to_string(listed));
     c_.expect_end("Nodes");
   }
 

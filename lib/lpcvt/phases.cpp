@@ -86,7 +86,7 @@ PhaseRuns run_phases(const Background& bg, const LpcvtOptions& opt, int n,
       run.r = run_lpcvt(bg, o, {});
       const TriangulationCheck ck = check_triangulation(run.r.mesh);
       if (!ck.ok())
-        throw NumericalError("lpcvt: invalid output triangulation (phase " + std::to_string(todo[i]) + "): " + ck.summary());
+        throw NumericalError("invalid output triangulation (phase " + std::to_string(todo[i]) + "): " + ck.summary());
       run.score = recombine_score(run.r.mesh);
       run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     } catch (...) {

@@ -188,6 +188,12 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
   const bool lattice = opt.seed_mode == SeedMode::Lattice && !opt.multilevel && !bg.is_analytic();
   const int phases = !lattice ? 1 : job.phases > 0 ? job.phases : auto_phases(bg);
   rep["options"]["phases"] = phases;
+  // the effective start and preconditioning (their defaults differ between frames and --analytic)
+  rep["options"]["init"] = opt.multilevel ? "multilevel"
+                           : opt.seed_mode == SeedMode::Lattice ? "lattice"
+                           : opt.seed_mode == SeedMode::Density ? "density"
+                                                                : "uniform";
+  rep["options"]["precondition"] = opt.lbfgs.precondition;
   LpcvtResult r;
   if (phases == 1) {
     r = run_lpcvt(bg, opt, log);
@@ -198,7 +204,7 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
     rep["phase"] = pr.kept;
   }
   const TriangulationCheck chk = check_triangulation(r.mesh);
-  if (!chk.ok()) throw NumericalError("lpcvt: invalid output triangulation: " + chk.summary());
+  if (!chk.ok()) throw NumericalError("invalid output triangulation: " + chk.summary());
   const EnergyTimers& et = r.energy_timers;
   rep["energy_seconds"] = {{"delaunay", et.delaunay}, {"integrate", et.integrate}, {"evaluations", et.evaluations},
                            {"updates", et.updates}, {"rebuilds", et.rebuilds}, {"metric_graph_carried", et.carried},

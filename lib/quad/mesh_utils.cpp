@@ -38,6 +38,20 @@ std::vector<std::vector<int>> boundary_loops(const Mesh& m) {
   return loops;
 }
 
+void check_simple_boundary(const Mesh& m, const std::string& source) {
+  // on the cells' free edges (a notch touching the boundary pinches it although the listed
+  // boundary edges do not); boundary_free_edges leaves out a hanging node's half-edges
+  Mesh o = m;
+  orient_counter_clockwise(o);
+  std::vector<int> edges_at(o.nodes.size(), 0);
+  for (const auto& e : boundary_free_edges(o))
+    for (int v : e)
+      if (++edges_at[v] > 2)
+        throw InputError(source, "the domain is pinched: the boundary node at " + point_text(o.nodes[v]) +
+                                     " is on more than two boundary edges (cells meet only there); neither BAMG "
+                                     "nor lpcvt meshes it");
+}
+
 double polygon_area(const Mesh& m, const std::vector<int>& loop) {
   double a = 0;
   const Vec2 o = m.nodes[loop[0]];

@@ -16,6 +16,12 @@ namespace quadapt {
 /// loops (a node with more than one outgoing free edge).
 std::vector<std::vector<int>> boundary_loops(const Mesh& m);
 
+/// Refuses an input whose boundary is pinched — a node on more than two free edges (cells that
+/// meet only there), which BAMG and the LpCVT triangulation cannot mesh: InputError "SOURCE: the
+/// domain is pinched: the boundary node at (x, y) is on more than two boundary edges ...".
+/// They failed later, naming "mesh" or their own output. Hanging nodes are no pinch.
+void check_simple_boundary(const Mesh& m, const std::string& source);
+
 /// Signed area of a closed polygon given by node indices.
 double polygon_area(const Mesh& m, const std::vector<int>& loop);
 

@@ -262,10 +262,14 @@ SizeResult solve_goal_size(const Mesh& shape, const std::vector<double>& eta_in,
   const int nc = shape.num_cells();
   if (static_cast<int>(eta_in.size()) != nc) throw InputError(source, "DWR indicator count does not match the cells");
   if (!(gopt.r_max >= 1) || !(gopt.c_max >= 1)) throw InputError("r_max and c_max must be >= 1");
+  // adjoint writes |η_k| >= 0: a negative or non-finite value is a damaged or foreign file (a
+  // negative one was taken as |η| and got the finest cells, with exit 0)
   double emax = 0;
-  for (double v : eta_in) {
-    if (!std::isfinite(v)) throw InputError(source, "DWR indicator has non-finite values");
-    emax = std::max(emax, std::abs(v));
+  for (int k = 0; k < nc; ++k) {
+    const double v = eta_in[k];
+    if (!std::isfinite(v)) throw InputError(source, "field \"dwr\" is not finite in " + cell_label(shape, k));
+    if (v < 0) throw InputError(source, "field \"dwr\" is negative in " + cell_label(shape, k));
+    emax = std::max(emax, v);
   }
   if (!(emax > 0)) throw InputError(source, "DWR indicator is zero in every cell: nothing to adapt to");
   // |η|, floored at 1e-12 η_max so that the logarithms exist (stated in docs/size-solve.md)

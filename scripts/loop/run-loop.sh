@@ -197,7 +197,11 @@ if [ -z "${OMP_NUM_THREADS:-}" ] && [[ " ${MAKEFLAGS:-} " =~ \ -j([0-9]*) ]]; th
 fi
 
 # ------------------------------------------------------------------ run directory
-mkdir -p "$OUT" || die "cannot create OUT '$OUT'"
+# one line on failure (mkdir's own message was printed first): why, from mkdir's, without its prefix
+if ! err="$(mkdir -p "$OUT" 2>&1)"; then
+  [ -e "$OUT" ] && [ ! -d "$OUT" ] && err="it exists and is not a directory"
+  die "cannot create OUT '$OUT': ${err##*: }"
+fi
 OUT="$(cd "$OUT" && pwd)"
 CASE="$(cd "$(dirname "$CASE")" && pwd)/$(basename "$CASE")"
 exec 9>"$OUT/.lock"

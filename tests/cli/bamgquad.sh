@@ -119,4 +119,67 @@ for b in zero nan novinv; do
   grep -q "$b.msh" "$T/err_$b" || fail "$b: message does not name the file: $(cat "$T/err_$b")"
 done
 grep -qi "vinv" "$T/err_novinv" || fail "no-Vinv message: $(cat "$T/err_novinv")"
+
+# --- a node no cell uses: dropped before BAMG (ffbamg aborted, "Err mesh vertices 122 is not in a
+# triangle", and bamgquad printed its 478-character crash dump; the other tools accept the file)
+python3 - "$T/frame.msh" "$T/unused.msh" <<'PY'
+import sys
+L = open(sys.argv[1]).read().split("\n")
+i = L.index("$Nodes")
+L[i + 1] = str(int(L[i + 1]) + 1)
+L.insert(L.index("$EndNodes"), "99999 0.37 0.61 0")
+open(sys.argv[2], "w").write("\n".join(L))
+PY
+bamgquad -q "$T/unused.msh" -o "$T/unused_q.msh" 2> "$T/err_unused" || fail "unused node: $(cat "$T/err_unused")"
+python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert abs(r['complexity_ratio']-1) <= 0.15, r['cells']" "$T/unused_q.json" ||
+  fail "unused node: cell count"
+
+# --- a pinched domain (a bottom quad's upper-left half missing: its corner on the bottom is on four
+# free edges): one line naming the input and the pinch, from bamgquad and lpcvt (they said "mesh:
+# boundary node ... starts two boundary edges" and "lpcvt: lpcvt: invalid output triangulation")
+python3 - "$T/frame.msh" "$T/pinched.msh" <<'PY'
+import sys
+L = open(sys.argv[1]).read().split("\n")
+for k, l in enumerate(L):
+    f = l.split()
+    if len(f) == 9 and f[1] == "3" and f[5] == "6" and f[6] == "7":  # the quad 6 7 18 17 (bottom row)
+        L[k] = " ".join([f[0], "2"] + f[2:8])
+        break
+else:
+    sys.exit("no such quad")
+open(sys.argv[2], "w").write("\n".join(L))
+PY
+for tool in bamgquad lpcvt; do
+  set +e
+  $tool "$T/pinched.msh" -o "$T/pinched_$tool.msh" 2> "$T/err_pinched"; rc=$?
+  set -e
+  [ $rc = 2 ] || fail "pinched, $tool: exit $rc ($(cat "$T/err_pinched"))"
+  [ "$(wc -l < "$T/err_pinched")" = 1 ] || fail "pinched, $tool: not one line: $(cat "$T/err_pinched")"
+  grep -q "^$tool: $T/pinched.msh: the domain is pinched: the boundary node at (0.5, 0) " "$T/err_pinched" ||
+    fail "pinched, $tool: $(cat "$T/err_pinched")"
+  [ ! -e "$T/pinched_$tool.msh" ] || fail "pinched, $tool: output written"
+done
+
+# --- an ffbamg that fails: one line naming the input and ffbamg's own error line (was its whole log)
+cat > "$T/fakebamg" <<'SH'
+#!/bin/sh
+echo "  -- mesh:  Mesh Generator bamg version 1.02 : banner"
+echo "  Err mesh vertices 7 is not in a  triangle"
+echo "terminate called after throwing an instance of 'bamg::ErrorMesh'"
+exit 1
+SH
+chmod +x "$T/fakebamg"
+set +e
+QUADAPT_FFBAMG="$T/fakebamg" bamgquad -q "$T/frame.msh" -o "$T/fake.msh" 2> "$T/err_fake"; rc=$?
+set -e
+[ $rc = 2 ] && [ "$(wc -l < "$T/err_fake")" = 1 ] || fail "failing ffbamg: exit $rc: $(cat "$T/err_fake")"
+grep -q "^bamgquad: $T/frame.msh: ffbamg failed (exit status 1): Err mesh vertices 7 is not in a triangle$" "$T/err_fake" ||
+  fail "failing ffbamg: $(cat "$T/err_fake")"
+
+# --- a count far off the target says so (was exit 0 and silent: 4 cells for 1000 at --edge-factor 1e6)
+bamgquad "$T/frame.msh" -o "$T/ef.msh" --edge-factor 1e6 2> "$T/err_ef" || fail "--edge-factor 1e6: $(cat "$T/err_ef")"
+grep -q "^bamgquad: warning: [0-9]* cells for the frame's target of 1000 (ratio .*) after [0-9] BAMG run(s): --edge-factor far from its default?$" "$T/err_ef" ||
+  fail "--edge-factor 1e6: no warning: $(cat "$T/err_ef")"
+bamgquad "$T/frame.msh" -o "$T/q2.msh" 2> "$T/err_q2"
+if grep -q "warning" "$T/err_q2"; then fail "a warning on a calibrated run: $(cat "$T/err_q2")"; fi
 echo "bamgquad: all checks passed"

@@ -17,6 +17,15 @@ a, b = t.index("$Nodes"), t.index("$EndNodes") + len("$EndNodes\n")
 open(sys.argv[2], "w").write(t[:a] + t[b:])
 PY
 sed '0,/^0\.5 0 0$/s//nan 0 0/' "$good" > "$T/in/nan.msh"
+# a $Nodes header that counts 11 more nodes than its blocks list (was read as the blocks say)
+python3 - "$good" "$T/in/count.msh" <<'PY'
+import sys
+L = open(sys.argv[1]).read().split("\n")
+i = L.index("$Nodes") + 1
+h = L[i].split()
+L[i] = " ".join([h[0], str(int(h[1]) + 11)] + h[2:])
+open(sys.argv[2], "w").write("\n".join(L))
+PY
 sed 's/^1 1 2 5 4$/1 1 4 5 2/' "$good" > "$T/in/inverted.msh"
 cat > "$T/in/triangle.msh" <<'MSH'
 $MeshFormat
@@ -64,6 +73,7 @@ check missing_nodes "\$Nodes"
 check nan "non-finite coordinate"
 check triangle "is a triangle, but quadrilaterals are required" --require quads
 check inverted "is inverted"
+check count "\$Nodes: the header says 20 nodes, but the blocks list 9"
 
 # The same files are fine where they are valid: the triangle mesh without --require.
 meshconvert -q "$T/in/triangle.msh" -o "$T/out/ok.msh"

@@ -190,4 +190,9 @@ if kill -0 "$(cat slow.pid)" 2>/dev/null; then kill "$(cat slow.pid)"; fail "the
 rm bin/refine && ln -s "$QUADAPT_BIN_DIR/refine" bin/refine
 PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --out run-term > log8 2>&1 || { cat log8; fail "resume after TERM"; }
 [ -s run-term/loop.done ] || fail "no loop.done after the resume"
+# --- OUT an existing file: one line, the loop's (mkdir's own "File exists" line came first)
+touch afile
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --out afile > log9 2>&1 || rc=$?
+[ $rc -eq 2 ] || fail "OUT a file: status $rc (want 2): $(cat log9)"
+[ "$(cat log9)" = "loop: error: cannot create OUT 'afile': it exists and is not a directory" ] || fail "OUT a file: $(cat log9)"
 echo "ok: a failing step stops the loop with status 1 (make: 2, 'Error 1'), earlier steps intact, resume finishes"

@@ -66,6 +66,6 @@ PY
 
 # refusals: one line naming the option, exit 2, nothing written
 expect_exit 2 "--lattice-phase gives one phase" lpcvt "$T/f45.msh" -o "$T/bad.msh" --phases 4 --lattice-phase 0.5 0.5
-expect_exit 2 "--lattice-phase: Value 1.5 not in range" lpcvt "$T/f45.msh" -o "$T/bad.msh" --lattice-phase 1.5 0
+expect_exit 2 "--lattice-phase: 1.5 is not in [0, 1)" lpcvt "$T/f45.msh" -o "$T/bad.msh" --lattice-phase 1.5 0
 [ ! -e "$T/bad.msh" ] || fail "a refused lpcvt wrote its output"
 echo "OK: lpcvt --phases keeps its best phase ($PX $PY_, $IRR irregular), equal to that phase's run"

@@ -32,6 +32,38 @@ expect_exit 2 "--gradation: 0.5 is not 0 (off) or in (1, inf)" size-solve shape.
 expect_exit 2 "--gradation: 1 is not 0 (off) or in (1, inf)" lpcvt frame.msh --gradation 1 -o x.msh
 expect_exit 2 "--gradation: 1.05 is not 0 (off) or in [1.1, inf)" bamgquad frame.msh --gradation 1.05 -o x.msh
 bamgquad -q frame.msh --gradation 0 -o g0.msh
+# lpcvt --lattice-phase: each in [0, 1) (1 1 was accepted)
+expect_exit 2 "--lattice-phase: 1 is not in [0, 1)" lpcvt frame.msh -o x.msh --lattice-phase 1 1
+# quadsmooth --frame-gradation: 0 or > 1, refused on the command line before any input is read and
+# without naming one (it said "quadsmooth: m.msh: --frame-gradation must be > 1 (or 0: none)")
+echo garbage > garbage.msh
+expect_exit 2 "quadsmooth: --frame-gradation: 0.5 is not 0 (off) or in (1, inf) (see quadsmooth --help)" \
+  quadsmooth garbage.msh --frame frame.msh --fit-frame meshed --frame-gradation 0.5 -o x.msh
+# CLI11's own ranges, said like the table's (were "Value -1 not in range 0.000000 to 10.000000")
+expect_exit 2 "lpcvt: --jitter: -1 is not in [0, 10] (see" lpcvt frame.msh -o x.msh --jitter -1
+expect_exit 2 "lpcvt: --phases: -1 is not in [0, 16] (see" lpcvt frame.msh -o x.msh --phases -1
+expect_exit 2 "lpcvt: --lp-exponent: 1 is not in [2, 32] (see" lpcvt frame.msh -o x.msh --lp-exponent 1
+expect_exit 2 "lpcvt: --grid: 0 is not in [1, 4096] (see" lpcvt --analytic saddle -o x.msh --grid 0
+expect_exit 2 "lpcvt: --degree: 0 is not in [1, 8] (see" lpcvt frame.msh -o x.msh --complexity 100 --degree 0
+expect_exit 2 "lpcvt: --cells-per-triangle: 0.5 is not in [1, 3] (see" lpcvt frame.msh -o x.msh --cells-per-triangle 0.5
+expect_exit 2 "recombine: --min-quality: -1 is not in [0, 0.99] (see" recombine m.msh -o x.msh --min-quality -1
+expect_exit 2 "quadsmooth: --frame-smooth: -1 is not in [0, 1000] (see" quadsmooth m.msh -o x.msh --frame-smooth -1
+expect_exit 2 "meshconvert: --jitter: -1 is not in [0, 0.45] (see" meshconvert m.msh -o x.msh --jitter -1
+expect_exit 2 "meshconvert: --order: 9 is not in [1, 6] (see" meshconvert m.msh -o x.msh --order 9
+# --help says the ranges enforced (quadsmooth said NONNEGATIVE, bamgquad NONNEGATIVE; lpcvt
+# --gradation, meshplot --width / --subsample, dgsolve --rtol / --penalty said none)
+for want in "quadsmooth|--frame-gradation FLOAT:0 or (1, inf)" "bamgquad|--gradation FLOAT:0 or [1.1, inf)" \
+            "lpcvt|--gradation FLOAT:0 or (1, inf)" "lpcvt|--lattice-phase FLOAT:[0, 1)" "meshplot|--width INT:[16, 20000]" \
+            "meshplot|--subsample INT:[0, 64]" "dgsolve|--rtol FLOAT:(0, 1)" "dgsolve|--penalty FLOAT:(0, inf)"; do
+  h=$(${want%%|*} --help)
+  case "$h" in *"${want#*|}"*) ;; *) fail "${want%%|*} --help lacks '${want#*|}'" ;; esac
+done
+# a missing input: "TOOL: FILE: no such file" (was "dgsolve: MESH: File does not exist: FILE (see dgsolve --help)")
+expect_exit 2 "dgsolve: nonexist.msh: no such file" dgsolve nonexist.msh -c "$C" -p 1 -o x.msh
+[ "$ERR" = "dgsolve: nonexist.msh: no such file" ] || fail "missing input: $ERR"
+expect_exit 2 "lpcvt: nonexist.geo: no such file" lpcvt frame.msh -o x.msh --geometry nonexist.geo
+# an expression that does not parse names its option (it said "column 3: expression ends unexpectedly")
+expect_exit 2 "estimate-frame: --exact 'x*': column 3: " estimate-frame sol.msh --exact "x*" -p 2 -o x.msh
 # estimate-frame --exact: the library's degrees (was: any p >= 1; -p 100 grew past 3 GB)
 expect_exit 2 "-p 9 is out of range (1..8)" estimate-frame sol.msh --exact "x*x" -p 9 -o x.msh
 [ ! -e x.msh ] || fail "a refused option wrote x.msh"

@@ -54,6 +54,31 @@ done
 expect_exit 2 "empty" dgsolve plain.msh -c case.json -p 1 -o ""
 expect_exit 2 "is a directory" meshplot plain.msh -o d
 if [ -n "$(ls d)" ]; then fail "something written into d: $(ls d)"; fi
+# "" for any path option is refused (was: --report "" wrote the default x.json, --voronoi "" nothing,
+# both exit 0)
+expect_exit 2 '--report: empty value ""' meshconvert plain.msh -o x.msh --report ""
+expect_exit 2 '--report: empty value ""' dgsolve plain.msh -c case.json -p 1 -o x.msh --report ""
+expect_exit 2 '--voronoi: empty value ""' lpcvt frame.msh -o x.msh --voronoi ""
+if [ -e x.msh ] || [ -e x.json ]; then fail "written although a path was empty"; fi
+# below a file: "is not a directory" (was "directory sol.msh does not exist")
+expect_exit 2 "sol.msh/x.msh: sol.msh is not a directory" meshconvert plain.msh -o sol.msh/x.msh
+# a folder this user cannot write: refused before any work (was: lpcvt ran, then failed at the end).
+# Root may write anywhere: then as user 65534 (setpriv), if this system allows it.
+mkdir ro && cp frame.msh ro/frame.msh && chmod 555 ro
+ro_run=()
+if [ "$(id -u)" -ne 0 ]; then ro_run=(env)
+elif command -v setpriv > /dev/null && chmod 755 "$T" && setpriv --reuid=65534 --regid=65534 --clear-groups true 2> /dev/null; then
+  ro_run=(setpriv --reuid=65534 --regid=65534 --clear-groups)
+fi
+if [ ${#ro_run[@]} -gt 0 ]; then
+  expect_exit 2 "ro/t.msh: directory ro is not writable (Permission denied)" "${ro_run[@]}" lpcvt ro/frame.msh -o ro/t.msh
+  mkdir w && chmod 777 w
+  expect_exit 2 "ro/x.json: directory ro is not writable" "${ro_run[@]}" meshconvert plain.msh -o w/x.msh --report ro/x.json
+  if [ -e w/x.msh ]; then fail "w/x.msh written although its report cannot be"; fi
+else
+  echo "note: running as root without setpriv: the unwritable-folder check is not exercised"
+fi
+chmod 755 ro
 
 # 3. a symlink output: the link stays, its target gets the mesh (and the report goes beside the link)
 cp plain.msh target.msh

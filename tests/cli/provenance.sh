@@ -37,6 +37,25 @@ for path in sys.argv[2:]:
 assert set(p["libraries"]) >= {"gmsh", "CGAL", "Eigen", "UMFPACK", "CLI11", "nlohmann_json"}, p["libraries"]
 print("provenance: report ok:", p["commit"][:12], "dirty" if p["dirty"] else "clean", p["build_type"], p["host"]["cpu"])
 PY
+# options: each once, typed (were the CLI11 text under the option's spelling beside the tool's typed
+# value: recombine 'min-quality': '0' and 'min_quality': 0.0); lpcvt's effective start and
+# preconditioning recorded (they were missing)
+python3 "$S/tests/cli/lpcvt_frame.py" "$T/f.msh" --n 4
+lpcvt -q "$T/f.msh" -o "$T/tri.msh" --lp-exponent 4
+recombine -q "$T/tri.msh" -o "$T/quad.msh" --min-quality 0.2
+lpcvt -q --analytic saddle -o "$T/sad.msh" --max-cycles 1 --initial 30
+python3 - "$T/tri.json" "$T/quad.json" "$T/sad.json" "$T/sol.json" <<'PY'
+import json, sys
+tri, quad, sad, sol = (json.load(open(f)) for f in sys.argv[1:])
+for r in (tri, quad, sad, sol):
+    o = r["options"]
+    assert not [k for k in o if "-" in k], (r["tool"], [k for k in o if "-" in k])
+assert tri["options"]["lp_exponent"] == 4 and quad["options"]["min_quality"] == 0.2, (tri["options"], quad["options"])
+assert tri["options"]["init"] == "lattice" and tri["options"]["precondition"] is True, tri["options"]
+assert sad["options"]["init"] == "uniform" and sad["options"]["precondition"] is False, sad["options"]
+assert sol["options"]["degree"] == 1, sol["options"]
+print("provenance: options typed, once each")
+PY
 # without .git (a release tarball): the generator still writes a source, with commit "unknown"
 mkdir "$T/tarball"
 cmake -DSRC="$T/tarball" -DOUT="$T/bi.cpp" -DVERSION=9.9.9 -DBUILD_TYPE=Release -DCOMPILER=cc \

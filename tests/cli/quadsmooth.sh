@@ -170,7 +170,7 @@ quadsmooth -q "$IN" --frame "$T/band.msh" --method angle --fit-frame capped -o "
 quadsmooth -q "$IN" --frame "$T/band.msh" --fit-frame meshed --frame-gradation 0.5 -o "$T/bad5.msh" 2>"$T/err5"; rc5=$?
 set -e
 [ $rc4 = 2 ] && grep -q "shape fit only" "$T/err4" || fail "--fit-frame with --method angle: exit $rc4, $(cat "$T/err4")"
-[ $rc5 = 2 ] && grep -q "frame-gradation must be > 1" "$T/err5" || fail "--frame-gradation 0.5: exit $rc5, $(cat "$T/err5")"
+[ $rc5 = 2 ] && grep -q -- "--frame-gradation: 0.5 is not 0 (off) or in (1, inf)" "$T/err5" || fail "--frame-gradation 0.5: exit $rc5, $(cat "$T/err5")"
 [ ! -e "$T/bad4.msh" ] && [ ! -e "$T/bad5.msh" ] || fail "output written on bad options"
 set +e
 quadsmooth -q "$IN" --method shape -o "$T/bad3.msh" 2>"$T/err3"; rc3=$?

@@ -117,4 +117,18 @@ python3 "$GOLD/add_view.py" "$T/sq12.msh" "$T/dwr12.msh" dwr B
 expect_fail "dwr12.msh: DWR file is on another mesh" "$SHAPE" --dwr "$T/dwr12.msh" --growth 1.5
 expect_fail "no scalar cell field \"dwr\"" "$SHAPE" --dwr "$SHAPE" --growth 1.5
 expect_fail "outside the range" "$SHAPE" --dwr "$T/dwr.msh" --growth 40
+# a negative indicator (adjoint writes |eta| >= 0): refused, naming the file and the cell (was exit
+# 0, the cell taken as |-1| and refined the most)
+python3 - "$T/dwr.msh" "$T/dwrneg.msh" <<'PY'
+import sys
+L = open(sys.argv[1]).read().split("\n")
+i = L.index('"dwr"') - 2                      # $ElementData
+j = i + 2 + int(L[i + 1])                      # count of real tags
+k = j + 1 + int(L[j])                          # count of integer tags
+first = k + 1 + int(L[k])                      # the first value line
+tag, v = L[first].split()
+L[first] = tag + " -1"
+open(sys.argv[2], "w").write("\n".join(L))
+PY
+expect_fail "dwrneg.msh: field \"dwr\" is negative in cell [0-9]* (centroid (" "$SHAPE" --dwr "$T/dwrneg.msh" --growth 1.5
 echo "size_solve: OK"

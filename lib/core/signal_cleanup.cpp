@@ -1,0 +1,101 @@
+#include "core/signal_cleanup.hpp"
+
+#include <limits.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+
+namespace quadapt {
+
+namespace {
+enum Kind : int { kFile, kDirectory, kChild };
+enum State : int { kFree, kFilling, kReady };
+
+// 64 slots: a tool has at most a few temporaries, one ffbamg run (a child, its directory and four
+// files) and the report's temporary alive at once.
+struct Slot {
+  std::atomic<int> state{kFree};
+  int kind = kFile;
+  pid_t pid = 0;
+  char path[PATH_MAX] = {};
+};
+Slot g_slots[64];
+constexpr int kSlots = int(sizeof g_slots / sizeof g_slots[0]);
+
+int claim(int kind, const char* path, pid_t pid) {
+  if (path && std::strlen(path) >= PATH_MAX) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    int expected = kFree;
+    if (!g_slots[i].state.compare_exchange_strong(expected, kFilling)) continue;
+    g_slots[i].kind = kind;
+    g_slots[i].pid = pid;
+    if (path) std::strcpy(g_slots[i].path, path);
+    g_slots[i].state.store(kReady, std::memory_order_release);
+    return i;
+  }
+  return -1;
+}
+
+// Async-signal-safe only: kill, waitpid, unlink, rmdir, sigaction, raise.
+void on_signal(int sig) {
+  const int saved_errno = errno;
+  for (Slot& s : g_slots)
+    if (s.state.load(std::memory_order_acquire) == kReady && s.kind == kChild && s.pid > 0) {
+      ::kill(s.pid, SIGKILL);
+      while (::waitpid(s.pid, nullptr, 0) < 0 && errno == EINTR) {
+      }
+    }
+  for (Slot& s : g_slots)
+    if (s.state.load(std::memory_order_acquire) == kReady && s.kind == kFile) ::unlink(s.path);
+  for (Slot& s : g_slots)
+    if (s.state.load(std::memory_order_acquire) == kReady && s.kind == kDirectory) ::rmdir(s.path);
+  // End by the signal itself (status 128 + sig for a shell, and a parent such as make or bash
+  // sees an interrupt): default action, then raise; the signal stays blocked in this handler and
+  // is delivered as soon as it returns.
+  struct sigaction dfl {};
+  dfl.sa_handler = SIG_DFL;
+  sigemptyset(&dfl.sa_mask);
+  ::sigaction(sig, &dfl, nullptr);
+  ::raise(sig);
+  errno = saved_errno;
+}
+}  // namespace
+
+SignalCleanup SignalCleanup::file(const std::string& path) { return SignalCleanup(claim(kFile, path.c_str(), 0)); }
+SignalCleanup SignalCleanup::directory(const std::string& path) {
+  return SignalCleanup(claim(kDirectory, path.c_str(), 0));
+}
+SignalCleanup SignalCleanup::child(pid_t pid) { return SignalCleanup(claim(kChild, nullptr, pid)); }
+
+SignalCleanup& SignalCleanup::operator=(SignalCleanup&& o) noexcept {
+  if (this != &o) {
+    release();
+    slot_ = o.slot_;
+    o.slot_ = -1;
+  }
+  return *this;
+}
+
+void SignalCleanup::release() {
+  if (slot_ < 0) return;
+  g_slots[slot_].state.store(kFree, std::memory_order_release);
+  slot_ = -1;
+}
+
+void install_signal_cleanup() {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction old {};
+    if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler == SIG_IGN) continue;
+    struct sigaction sa {};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    for (int other : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&sa.sa_mask, other);  // one cleanup at a time
+    ::sigaction(sig, &sa, nullptr);
+  }
+}
+
+}  // namespace quadapt

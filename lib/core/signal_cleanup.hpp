@@ -1,0 +1,54 @@
+#pragma once
+// Cleaning up after SIGINT / SIGTERM / SIGHUP (docs/exit-codes.md: a temporary is removed on
+// failure, and an interrupt is a failure).
+//
+// Library code that creates something the process must not leave behind registers it for the
+// time it exists: atomic_write its temporary file, run_ffbamg its child process and private
+// directory. The tools' runner installs the handler (install_signal_cleanup; library code never
+// installs handlers). On a signal the handler kills the registered children (SIGKILL, then
+// waits for them, so they write nothing more), unlinks the registered files, removes the
+// registered directories, and re-raises the signal with its default action: the process ends by
+// that signal, which a shell reports as status 128 + N (130 for SIGINT, 143 for SIGTERM).
+//
+// The registry is a fixed array of slots holding C strings and pids, written before a slot is
+// published (an atomic flag), so the handler uses only async-signal-safe calls (kill, waitpid,
+// unlink, rmdir, raise) and never allocates.
+#include <sys/types.h>
+
+#include <string>
+
+namespace quadapt {
+
+/// One registered entry, released on destruction (after a rename, or once the directory or the
+/// child is gone). Move-only. When the registry is full the entry is simply not registered
+/// (the interrupt then leaves it behind, as before).
+class SignalCleanup {
+ public:
+  SignalCleanup() = default;
+  /// A file the handler unlinks.
+  static SignalCleanup file(const std::string& path);
+  /// A directory the handler removes after unlinking the files (rmdir removes only an empty
+  /// directory: register the files in it too).
+  static SignalCleanup directory(const std::string& path);
+  /// A child process the handler kills (before anything is unlinked).
+  static SignalCleanup child(pid_t pid);
+
+  SignalCleanup(SignalCleanup&& o) noexcept : slot_(o.slot_) { o.slot_ = -1; }
+  SignalCleanup& operator=(SignalCleanup&& o) noexcept;
+  SignalCleanup(const SignalCleanup&) = delete;
+  SignalCleanup& operator=(const SignalCleanup&) = delete;
+  ~SignalCleanup() { release(); }
+
+  /// Unregisters now (e.g. right after the temporary was renamed to the output).
+  void release();
+
+ private:
+  explicit SignalCleanup(int slot) : slot_(slot) {}
+  int slot_ = -1;
+};
+
+/// Installs the handler for SIGINT, SIGTERM and SIGHUP (those left at their default action:
+/// an ignored SIGINT, e.g. under nohup, stays ignored). Called once per process by the runner.
+void install_signal_cleanup();
+
+}  // namespace quadapt

@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# Interrupts (docs/exit-codes.md "Interrupted"): SIGINT or SIGTERM while a tool writes its output
+# removes the temporary `.NAME.tmp-PID.ext` (it was left behind: meshconvert -o x.msh / x.vtu,
+# dgsolve, lpcvt), leaves the old output as it was, and ends the tool by that signal (a shell's
+# status 130 / 143). bamgquad signalled alone while ffbamg runs kills ffbamg and removes its
+# /tmp/quadapt-ffbamg-XXXXXX directory (both were left behind).
+set -euo pipefail
+S=$QUADAPT_SOURCE_DIR
+. "$S/tests/cli/lib/assert.sh"
+in_temp_dir
+mkdir tmp
+export TMPDIR=$T/tmp
+
+# a mesh whose writing takes long enough to be caught: 300 x 300 quads (9 MB)
+python3 "$S/tests/golden/refine/make_square.py" 300 big.msh
+meshconvert -q big.msh -o out.msh
+meshconvert -q big.msh -o out.vtu
+sha256sum out.msh out.vtu > before.sha
+
+# interrupt.py SIG WHAT CMD...: runs CMD, sends SIG to it (only to it) as soon as WHAT exists
+# ("tmp": a temporary beside the output; "child": a child process), and prints
+# "rc=R caught=1 child=PID" (R < 0: ended by signal -R; caught=0: the moment never came).
+cat > interrupt.py <<'PY'
+import glob, os, signal, subprocess, sys, time
+sig, what, cmd = getattr(signal, sys.argv[1]), sys.argv[2], sys.argv[3:]
+p = subprocess.Popen(cmd, stderr=subprocess.DEVNULL)
+caught, child = 0, 0
+while p.poll() is None and not caught:
+    if what == "tmp":
+        caught = int(bool(glob.glob(".out.tmp-*")))
+    else:
+        try:
+            kids = open("/proc/%d/task/%d/children" % (p.pid, p.pid)).read().split()
+        except OSError:
+            kids = []
+        if kids:
+            child, caught = int(kids[0]), 1
+    if caught:
+        p.send_signal(sig)
+p.wait()
+print("rc=%d caught=%d child=%d" % (p.returncode, caught, child))
+PY
+
+for sig in SIGINT SIGTERM; do
+  num=$(python3 -c "import signal; print(int(signal.$sig))")
+  for out in out.msh out.vtu; do
+    res=$(python3 interrupt.py $sig tmp meshconvert -q big.msh -o $out)
+    case "$res" in
+      "rc=-$num caught=1 "*) ;;
+      *) fail "meshconvert -o $out, $sig during the write: $res (want ended by signal $num)" ;;
+    esac
+    if compgen -G '.*.tmp-*' > /dev/null; then fail "$sig left a temporary: $(ls -A)"; fi
+    sha256sum -c --quiet before.sha || fail "$sig changed the old output"
+  done
+done
+# the status a shell sees (SIGTERM: a background job of a script ignores SIGINT)
+rc=0
+meshconvert -q big.msh -o out.msh &
+p=$!
+while kill -0 $p 2>/dev/null && ! compgen -G '.out.tmp-*' > /dev/null; do :; done
+kill -TERM $p
+wait $p || rc=$?
+[ $rc -eq 143 ] || fail "SIGTERM during the write: status $rc (want 143)"
+if compgen -G '.*.tmp-*' > /dev/null; then fail "SIGTERM left a temporary: $(ls -A)"; fi
+
+# bamgquad: SIGTERM / SIGINT to bamgquad alone while ffbamg runs
+if ! command -v ffbamg > /dev/null && [ -z "${QUADAPT_FFBAMG:-}" ]; then
+  echo "ok: interrupts remove temporaries (ffbamg not installed: bamgquad not tried)"
+  exit 0
+fi
+cp "$E/meshes/square16.msh" m.msh
+dgsolve -q m.msh -c "$E/cases/smooth.json" -p 1 -o sol.msh
+estimate-frame -q sol.msh -o shape.msh
+size-solve -q shape.msh --complexity 20000 -o frame.msh
+for sig in SIGTERM SIGINT; do
+  num=$(python3 -c "import signal; print(int(signal.$sig))")
+  res=$(python3 interrupt.py $sig child bamgquad -q frame.msh -o bq.msh --runs 1)
+  case "$res" in
+    "rc=-$num caught=1 child="*) ;;
+    *) fail "bamgquad, $sig while ffbamg runs: $res (want ended by signal $num)" ;;
+  esac
+  child=${res##*child=}
+  sleep 0.2
+  if [ -e /proc/$child ] && grep -q ffbamg /proc/$child/cmdline 2>/dev/null; then fail "$sig: ffbamg ($child) still runs"; fi
+  if [ -n "$(ls -A tmp)" ]; then fail "$sig: left in TMPDIR: $(ls -A tmp)"; fi
+  if [ -e bq.msh ] || compgen -G '.*.tmp-*' > /dev/null; then fail "$sig: an output was written"; fi
+done
+echo "ok: interrupts remove temporaries, ffbamg and its directory"
