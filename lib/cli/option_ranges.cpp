@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <regex>
 #include <sys/stat.h>
 
@@ -88,9 +90,10 @@ CLI::Validator range_check(const OptionRange& r) {
       (r.zero_off ? "0 or " : "") + interval(r), std::string("range ") + r.option);
 }
 
-// Deactivates the active validator of `opt` described as `description` (CLI11's own name for
-// it) and adds `replacement` instead. No-op when there is none.
-void replace_validator(CLI::Option* opt, const std::string& description, const CLI::Validator& replacement) {
+// Deactivates the first active validator of `opt` for which `replacement` gives one, and adds
+// that one instead. No-op when none does.
+void replace_validator(CLI::Option* opt,
+                       const std::function<std::optional<CLI::Validator>(const CLI::Validator&)>& replacement) {
   for (int k = 0;; ++k) {
     CLI::Validator* v = nullptr;
     try {
@@ -98,9 +101,11 @@ void replace_validator(CLI::Option* opt, const std::string& description, const C
     } catch (const CLI::OptionNotFound&) {
       return;
     }
-    if (!v->get_active() || v->get_description() != description) continue;
+    if (!v->get_active()) continue;
+    std::optional<CLI::Validator> r = replacement(*v);
+    if (!r) continue;
     v->active(false);
-    opt->check(replacement);
+    opt->check(*r);
     return;
   }
 }
@@ -121,29 +126,25 @@ bool cli11_range(const CLI::Validator& v, double& lo, double& hi) {
 // to 0.450000"). (Positive / non-negative checks are cli/parse_errors' PositiveValue /
 // NonNegativeValue, which the tools attach themselves.)
 void replace_cli11_checks(CLI::Option* opt, const std::string& name) {
-  replace_validator(opt, "FILE", CLI::Validator(
-                                     [](std::string& s) {
-                                       if (s == "-") return std::string();
-                                       if (s.empty()) return std::string("empty file name \"\"");
-                                       struct stat st {};
-                                       if (::stat(s.c_str(), &st) != 0) return file_problem(s, "no such file");
-                                       if (S_ISDIR(st.st_mode)) return file_problem(s, "is a directory; give a file");
-                                       return std::string();
-                                     },
-                                     "FILE|-", "input file"));
-  for (int k = 0;; ++k) {
-    CLI::Validator* v = nullptr;
-    try {
-      v = opt->get_validator(k);
-    } catch (const CLI::OptionNotFound&) {
-      return;
-    }
+  const CLI::Validator file(
+      [](std::string& s) {
+        if (s == "-") return std::string();
+        if (s.empty()) return std::string("empty file name \"\"");
+        struct stat st {};
+        if (::stat(s.c_str(), &st) != 0) return file_problem(s, "no such file");
+        if (S_ISDIR(st.st_mode)) return file_problem(s, "is a directory; give a file");
+        return std::string();
+      },
+      "FILE|-", "input file");
+  replace_validator(opt, [&](const CLI::Validator& v) -> std::optional<CLI::Validator> {
+    if (v.get_description() != "FILE") return std::nullopt;
+    return file;
+  });
+  replace_validator(opt, [](const CLI::Validator& v) -> std::optional<CLI::Validator> {
     double lo, hi;
-    if (!v->get_active() || !cli11_range(*v, lo, hi)) continue;
-    v->active(false);
-    opt->check(range_check(OptionRange{"", "", lo, hi, false, false}));
-    return;
-  }
+    if (!cli11_range(v, lo, hi)) return std::nullopt;
+    return range_check(OptionRange{"", "", lo, hi, false, false});
+  });
 }
 
 void apply_option_ranges(const std::string& tool, CLI::App& app) {
