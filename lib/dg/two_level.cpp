@@ -1,6 +1,9 @@
 #include "dg/two_level.hpp"
 
+#include <omp.h>
+
 #include <Eigen/UmfPackSupport>
+#include <exception>
 
 #include "core/error.hpp"
 #include "fem/basis.hpp"
@@ -53,15 +56,39 @@ void TwoLevelPreconditioner::compute(const BlockSparseMatrix& A, const VertexCoa
   I.A = &A;
   I.coarse = coarse;
   I.post = post_smooth;
-  I.ilu.compute(A, order);
+  std::vector<int> back;
   if (post_smooth) {
-    std::vector<int> back(order.rbegin(), order.rend());
+    back.assign(order.rbegin(), order.rend());
     if (back.empty()) {
       back.resize(static_cast<size_t>(A.block_rows()));
       for (size_t i = 0; i < back.size(); ++i) back[i] = static_cast<int>(back.size() - 1 - i);
     }
-    I.ilu_back.compute(A, back);
   }
+  // The two factorisations are sequential and independent of each other: with two threads each
+  // gets one (the same factors bit for bit as one after the other). An exception inside an
+  // OpenMP region must not leave it: each section keeps its own and the first is rethrown.
+  std::exception_ptr err[2];
+#pragma omp parallel sections num_threads(2) if (post_smooth && omp_get_max_threads() > 1)
+  {
+#pragma omp section
+    {
+      try {
+        I.ilu.compute(A, order);
+      } catch (...) {
+        err[0] = std::current_exception();
+      }
+    }
+#pragma omp section
+    {
+      try {
+        if (post_smooth) I.ilu_back.compute(A, back);
+      } catch (...) {
+        err[1] = std::current_exception();
+      }
+    }
+  }
+  for (const auto& e : err)
+    if (e) std::rethrow_exception(e);
 
   // A_c = P^T A P, block by block: (S^T A_IJ S) scattered to the vertices of I and J.
   const int n = A.block_rows(), nb = A.block_size();

@@ -17,6 +17,8 @@
 // places, GMRES needed 127-177 iterations on adapted stretched meshes, or did not converge (an
 // oblique layer, D = 0.01 I, 25:1 cells: relative residual 1.3e-6 after 1000 iterations); with S'
 // 16-63. On structured and jittered grids the counts are the same either way.
+// compute(): the two factorisations are independent and each sequential, so with two or more
+// OpenMP threads they run side by side (the same factors bit for bit as one after the other).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>

@@ -6,9 +6,13 @@
 // the old smoother did not converge at all. Structured grids need the same count either way.
 #include <doctest/doctest.h>
 
+#include <omp.h>
+
+#include <algorithm>
 #include <string>
 
 #include "case/case.hpp"
+#include "core/error.hpp"
 #include "dg/discretization.hpp"
 #include "dg/linear_solver.hpp"
 #include "dg/solve.hpp"
@@ -66,4 +70,58 @@ TEST_CASE("two-level: structured grid, the count is the smoother-independent 10-
   CAPTURE(r.info.iterations);
   CHECK(r.error_vs_direct < 1e-9);
   CHECK(r.info.iterations <= 20);
+}
+
+// The two block ILU(0) factorisations run side by side when two threads are available
+// (two_level.cpp); each is sequential, so the preconditioner, the iterations and the solution
+// are the same bits with one thread or two.
+TEST_CASE("two-level: the same solution bit for bit with 1 and 2 threads") {
+  const std::string src = QUADAPT_SOURCE_DIR;
+  const Mesh m = read_msh(src + "/tests/fixtures/dg/boundary-layer-p1-step3.msh");
+  const Case cs = load_case(src + "/examples/cases/boundary-layer.json");
+  DGDiscretization dg(m, cs, 2);
+  BlockSparseMatrix B;
+  Eigen::VectorXd b;
+  dg.assemble(B, b);
+  VertexCoarseSpace vc = make_vertex_coarse_space(m, 2);
+  LinearSolverOptions o;
+  o.kind = LinearSolverKind::GmresTwoLevel;
+  o.coarse = &vc;
+  o.block_size = dg.dofs_per_cell();
+  o.block_order = sweep_order(m, cs.advection);
+  const int saved = omp_get_max_threads();
+  LinearSolveInfo i1, i2;
+  omp_set_num_threads(1);
+  const Eigen::VectorXd x1 = solve_linear(B, b, o, &i1);
+  omp_set_num_threads(2);
+  const Eigen::VectorXd x2 = solve_linear(B, b, o, &i2);
+  omp_set_num_threads(saved);
+  CHECK(i1.iterations == i2.iterations);
+  REQUIRE(x1.size() == x2.size());
+  CHECK((x1.array() == x2.array()).all());
+}
+
+TEST_CASE("two-level: a singular pivot block is a NumericalError from either factorisation") {
+  // p = 1 on a 3 x 3 grid; the middle cell's block row and column zeroed, so its pivot block is
+  // zero whatever the order: both factorisations throw, one error leaves the parallel sections.
+  const Mesh m = make_structured_quads(3, 3);
+  const Case cs = load_case(std::string(QUADAPT_SOURCE_DIR) + "/examples/cases/smooth.json");
+  DGDiscretization dg(m, cs, 1);
+  BlockSparseMatrix B;
+  Eigen::VectorXd b;
+  dg.assemble(B, b);
+  const int nb2 = B.block_size() * B.block_size();
+  for (int j = 0; j < 9; ++j) {  // block row and column 4 zero: singular in any elimination order
+    const long long a = B.find(4, j), c = B.find(j, 4);
+    if (a >= 0) std::fill_n(B.block(a), nb2, 0.0);
+    if (c >= 0) std::fill_n(B.block(c), nb2, 0.0);
+  }
+  VertexCoarseSpace vc = make_vertex_coarse_space(m, 1);
+  const int saved = omp_get_max_threads();
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    TwoLevelPreconditioner P;
+    CHECK_THROWS_WITH_AS(P.compute(B, vc, true), doctest::Contains("block ILU: singular pivot block"), NumericalError);
+  }
+  omp_set_num_threads(saved);
 }
