@@ -80,3 +80,33 @@ TEST_CASE("metric pieces: the bucket grid gives the site tree's pieces, bit for 
     same = a[k].site == b[k].site && a[k].cell == b[k].cell && a[k].v == b[k].v && a[k].label == b[k].label;
   CHECK(same);
 }
+
+TEST_CASE("metric pieces: a strongly anisotropic oblique cell takes the grid with few sites") {
+  // 50:1 at 30 degrees on 8 x 8 cells, ~10 sites a cell: below the default 32 sites, but the
+  // site tree's boxes hold ~30x the ellipses' sites (rvd.cpp), so the grid answers (before:
+  // never, and lpcvt spent 2-2.5x the CPU on such frames). The pieces stay the tree's.
+  Mesh m = quadapt::make_structured_quads(8, 8);
+  set_frame(m, 0.05, 0.001, 0.5236);
+  Background bg = Background::from_frame(m, 1.0, "mem");
+  bg.set_metric_cells(true);
+  int nfixed = 0;
+  const std::vector<Vec2> x = boundary_and_random(bg, 640, 7, nfixed);
+  const MetricGraph mg = build_metric_graph(bg, x, DelaunayGraph(x, true, false));
+  const SiteTree tree(x);
+  RestrictedVoronoi with_tree(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), &tree);
+  RestrictedVoronoi by_default(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), &tree);
+  with_tree.set_grid_min_sites(0);
+  REQUIRE(RestrictedVoronoi::kGridMinSites == 32);
+  RvdWorkspace wt, wd;
+  const std::vector<RvdPiece> a = with_tree.all_pieces(&wt), b = by_default.all_pieces(&wd);
+  CAPTURE(wd.grid_builds);
+  CAPTURE(wd.grid_searches);
+  CAPTURE(wd.box_queries);
+  CHECK(wd.grid_builds > 32);  // most of the 64 cells
+  CHECK(wd.grid_searches > wd.box_queries + wd.box_hits);
+  REQUIRE(a.size() == b.size());
+  bool same = true;
+  for (size_t k = 0; k < a.size() && same; ++k)
+    same = a[k].site == b[k].site && a[k].cell == b[k].cell && a[k].v == b[k].v && a[k].label == b[k].label;
+  CHECK(same);
+}
