@@ -28,25 +28,33 @@ struct TwoLevelRun {
   double error_vs_direct = 0;
 };
 
-TwoLevelRun run_two_level(const Mesh& m, const Case& cs, int p) {
-  DGDiscretization dg(m, cs, p);
+/// The block system of (m, cs, p) and gmres-2level's options as dgsolve sets them.
+struct TwoLevelSystem {
   BlockSparseMatrix B;
   Eigen::VectorXd b;
-  dg.assemble(B, b);
+  VertexCoarseSpace vc;
+  LinearSolverOptions o;
+  TwoLevelSystem(const DGDiscretization& dg, const Mesh& m, const Case& cs, int p) : vc(make_vertex_coarse_space(m, p)) {
+    dg.assemble(B, b);
+    o.kind = LinearSolverKind::GmresTwoLevel;
+    o.coarse = &vc;
+    o.block_size = dg.dofs_per_cell();
+    o.block_order = sweep_order(m, cs.advection);  // as dgsolve orders the cells
+  }
+  TwoLevelSystem(const TwoLevelSystem&) = delete;  // o.coarse points into this object
+};
+
+TwoLevelRun run_two_level(const Mesh& m, const Case& cs, int p) {
+  DGDiscretization dg(m, cs, p);
   SparseMatrixCSC A;
   Eigen::VectorXd b2;
   dg.assemble(A, b2);
   LinearSolverOptions direct;
   direct.kind = LinearSolverKind::UmfPack;
   const Eigen::VectorXd ref = solve_linear(A, b2, direct);
-  VertexCoarseSpace vc = make_vertex_coarse_space(m, p);
-  LinearSolverOptions o;
-  o.kind = LinearSolverKind::GmresTwoLevel;
-  o.coarse = &vc;
-  o.block_size = dg.dofs_per_cell();
-  o.block_order = sweep_order(m, cs.advection);  // as dgsolve orders the cells
+  const TwoLevelSystem sys(dg, m, cs, p);
   TwoLevelRun r;
-  const Eigen::VectorXd x = solve_linear(B, b, o, &r.info);
+  const Eigen::VectorXd x = solve_linear(sys.B, sys.b, sys.o, &r.info);
   r.error_vs_direct = (x - ref).norm() / ref.norm();
   return r;
 }
@@ -79,22 +87,14 @@ TEST_CASE("two-level: the same solution bit for bit with 1 and 2 threads") {
   const std::string src = QUADAPT_SOURCE_DIR;
   const Mesh m = read_msh(src + "/tests/fixtures/dg/boundary-layer-p1-step3.msh");
   const Case cs = load_case(src + "/examples/cases/boundary-layer.json");
-  DGDiscretization dg(m, cs, 2);
-  BlockSparseMatrix B;
-  Eigen::VectorXd b;
-  dg.assemble(B, b);
-  VertexCoarseSpace vc = make_vertex_coarse_space(m, 2);
-  LinearSolverOptions o;
-  o.kind = LinearSolverKind::GmresTwoLevel;
-  o.coarse = &vc;
-  o.block_size = dg.dofs_per_cell();
-  o.block_order = sweep_order(m, cs.advection);
+  const DGDiscretization dg(m, cs, 2);
+  const TwoLevelSystem sys(dg, m, cs, 2);
   const int saved = omp_get_max_threads();
   LinearSolveInfo i1, i2;
   omp_set_num_threads(1);
-  const Eigen::VectorXd x1 = solve_linear(B, b, o, &i1);
+  const Eigen::VectorXd x1 = solve_linear(sys.B, sys.b, sys.o, &i1);
   omp_set_num_threads(2);
-  const Eigen::VectorXd x2 = solve_linear(B, b, o, &i2);
+  const Eigen::VectorXd x2 = solve_linear(sys.B, sys.b, sys.o, &i2);
   omp_set_num_threads(saved);
   CHECK(i1.iterations == i2.iterations);
   REQUIRE(x1.size() == x2.size());
