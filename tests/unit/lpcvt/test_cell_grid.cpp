@@ -15,6 +15,16 @@
 
 using namespace lpcvt_test;
 
+namespace {
+/// The same pieces, in the same order, bit for bit.
+bool same_pieces(const std::vector<RvdPiece>& a, const std::vector<RvdPiece>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t k = 0; k < a.size(); ++k)
+    if (a[k].site != b[k].site || a[k].cell != b[k].cell || a[k].v != b[k].v || a[k].label != b[k].label) return false;
+  return true;
+}
+}  // namespace
+
 TEST_CASE("cell grid: a covered disk's sites are all candidates; a disk reaching outside is refused") {
   std::mt19937 rng(31);
   std::uniform_real_distribution<double> u(0, 1);
@@ -74,11 +84,7 @@ TEST_CASE("metric pieces: the bucket grid gives the site tree's pieces, bit for 
   CHECK(wt.grid_searches == 0);
   CHECK(wg.grid_builds > 100);
   CHECK(wg.grid_searches > wg.box_queries + wg.box_hits);  // mostly the grid
-  REQUIRE(a.size() == b.size());
-  bool same = true;
-  for (size_t k = 0; k < a.size() && same; ++k)
-    same = a[k].site == b[k].site && a[k].cell == b[k].cell && a[k].v == b[k].v && a[k].label == b[k].label;
-  CHECK(same);
+  CHECK(same_pieces(a, b));
 }
 
 TEST_CASE("metric pieces: a strongly anisotropic oblique cell takes the grid with few sites") {
@@ -104,9 +110,5 @@ TEST_CASE("metric pieces: a strongly anisotropic oblique cell takes the grid wit
   CAPTURE(wd.box_queries);
   CHECK(wd.grid_builds > 32);  // most of the 64 cells
   CHECK(wd.grid_searches > wd.box_queries + wd.box_hits);
-  REQUIRE(a.size() == b.size());
-  bool same = true;
-  for (size_t k = 0; k < a.size() && same; ++k)
-    same = a[k].site == b[k].site && a[k].cell == b[k].cell && a[k].v == b[k].v && a[k].label == b[k].label;
-  CHECK(same);
+  CHECK(same_pieces(a, b));
 }
