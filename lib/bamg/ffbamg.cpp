@@ -1,14 +1,6 @@
 #include "bamg/ffbamg.hpp"
 
-#include <fcntl.h>
-#include <pthread.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cctype>
-#include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -17,10 +9,9 @@
 #include <sstream>
 #include <vector>
 
+#include "core/child_process.hpp"
 #include "core/error.hpp"
 #include "core/signal_cleanup.hpp"
-
-extern char** environ;
 
 namespace quadapt {
 
@@ -102,48 +93,17 @@ FfbamgResult run_ffbamg(const InriaMesh& background, const std::vector<Eigen::Ma
   }
   FfbamgResult res;
   for (const auto& a : args) res.command += (res.command.empty() ? "" : " ") + fs::path(a).filename().string();
-
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
-  posix_spawn_file_actions_addchdir_np(&fa, dir.path.c_str());
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
+  ChildOptions co;
+  co.output = log.string();
+  co.directory = dir.path.string();
   const auto t0 = std::chrono::steady_clock::now();
-  // SIGINT / SIGTERM / SIGHUP held back from spawning until the child is registered below, so
-  // that an interrupt never leaves it running; the child starts with them unblocked.
-  sigset_t held, before;
-  sigemptyset(&held);
-  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&held, sig);
-  pthread_sigmask(SIG_BLOCK, &held, &before);
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  posix_spawnattr_setsigmask(&attr, &before);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
-  pid_t pid = 0;
-  int rc = posix_spawnp(&pid, exe.c_str(), &fa, &attr, argv.data(), environ);
-  posix_spawnattr_destroy(&attr);
-  posix_spawn_file_actions_destroy(&fa);
-  // killed (and waited for) by the signal handler if this process is interrupted meanwhile:
+  // killed by the signal handler if this process is interrupted meanwhile (core/child_process):
   // it would otherwise run on, writing into a directory that is being removed
-  SignalCleanup child = rc == 0 ? SignalCleanup::child(pid) : SignalCleanup();
-  pthread_sigmask(SIG_SETMASK, &before, nullptr);
-  if (rc != 0)
-    throw ExternalError("cannot run '" + exe + "' (FreeFEM's BAMG; Debian package freefem++): " +
-                        std::string(strerror(rc)));
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw ExternalError("waiting for ffbamg failed");
-  child.release();
+  const ChildExit ex = run_child(args, co);
+  if (ex.spawn_error != 0)
+    throw ExternalError("cannot run '" + exe + "' (FreeFEM's BAMG; Debian package freefem++): " + ex.how());
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::exists(out)) {
-    std::string how = WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
-                                        : "signal " + std::to_string(WTERMSIG(status));
-    throw ExternalError("ffbamg failed (" + how + "): " + cause_in(log));
-  }
+  if (!ex.ok() || !fs::exists(out)) throw ExternalError("ffbamg failed (" + ex.how() + "): " + cause_in(log));
   try {
     res.mesh = read_inria_mesh(out.string());
   } catch (const InputError& e) {

@@ -13,7 +13,6 @@
 
 #include "core/error.hpp"
 #include "core/path_guard.hpp"
-#include "core/signal_cleanup.hpp"
 
 namespace fs = std::filesystem;
 
@@ -54,21 +53,19 @@ void write_special(const OutputTarget& t, const std::function<void(std::ostream&
   write_direct(out, t.path, writer);
 }
 
-// Removes the temporary on every exit path unless released, and on SIGINT / SIGTERM while it
-// exists (core/signal_cleanup: the handler unlinks it).
-struct TempGuard {
-  std::string path;
-  SignalCleanup on_signal = SignalCleanup::file(path);
-  void release() {
-    path.clear();
-    on_signal.release();
-  }
-  ~TempGuard() {
-    std::error_code ec;
-    if (!path.empty()) fs::remove(path, ec);
-  }
-};
 }  // namespace
+
+TempFile::TempFile(std::string path) : path_(std::move(path)), on_signal_(SignalCleanup::file(path_)) {}
+
+TempFile::~TempFile() {
+  std::error_code ec;
+  if (!path_.empty()) fs::remove(path_, ec);
+}
+
+void TempFile::release() {
+  path_.clear();
+  on_signal_.release();
+}
 
 OutputTarget resolve_output(const std::string& path) {
   if (path.empty()) throw InputError("", "output path is empty; give a file name (or - for standard output)");
@@ -101,15 +98,15 @@ void atomic_write(const std::string& path, const std::function<void(std::ostream
   const OutputTarget t = resolve_output(path);
   check_not_an_input(path);  // stat follows the links: the same file as t.path
   if (t.kind != OutputTarget::Kind::Regular) return write_special(t, writer, binary);
-  TempGuard tmp{temp_name(t.path)};
+  TempFile tmp(temp_name(t.path));
   {
-    std::ofstream out(tmp.path, binary ? std::ios::binary : std::ios::out);
+    std::ofstream out(tmp.path(), binary ? std::ios::binary : std::ios::out);
     if (!out) throw ExternalError(path + ": cannot open for writing (" + std::strerror(errno) + ")");
     writer(out);
     out.flush();
     if (!out) throw ExternalError(path + ": write failed (disk full?)");
   }
-  commit(tmp.path, t.path);
+  commit(tmp.path(), t.path);
   tmp.release();
 }
 
@@ -120,15 +117,15 @@ void atomic_write_via_path(const std::string& path,
   const fs::path near = t.kind == OutputTarget::Kind::Regular
                             ? fs::path(t.path)
                             : fs::temp_directory_path() / ("quadapt" + fs::path(path).extension().string());
-  TempGuard tmp{temp_name(near)};
-  writer(tmp.path);
-  if (!fs::exists(tmp.path)) throw ExternalError(path + ": the writer produced no file");
+  TempFile tmp(temp_name(near));
+  writer(tmp.path());
+  if (!fs::exists(tmp.path())) throw ExternalError(path + ": the writer produced no file");
   if (t.kind == OutputTarget::Kind::Regular) {
-    commit(tmp.path, t.path);
+    commit(tmp.path(), t.path);
     tmp.release();
     return;
   }
-  std::ifstream in(tmp.path, std::ios::binary);
+  std::ifstream in(tmp.path(), std::ios::binary);
   write_special(t, [&](std::ostream& os) { os << in.rdbuf(); }, true);
 }
 

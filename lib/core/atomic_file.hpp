@@ -16,6 +16,8 @@
 #include <iosfwd>
 #include <string>
 
+#include "core/signal_cleanup.hpp"
+
 namespace quadapt {
 
 struct OutputTarget {
@@ -42,6 +44,24 @@ void atomic_write(const std::string& path, const std::function<void(std::ostream
 /// or copied to standard output / the device.
 void atomic_write_via_path(const std::string& path,
                            const std::function<void(const std::string& tmp_path)>& writer);
+
+/// A temporary file's path for a scope: the file is removed when the TempFile is destroyed
+/// (every exit path, exceptions included) unless released, and by the signal handler while it
+/// exists (core/signal_cleanup.hpp). Nothing is created: the owner writes the file.
+class TempFile {
+ public:
+  explicit TempFile(std::string path);
+  ~TempFile();
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  const std::string& path() const { return path_; }
+  /// Keeps the file (e.g. after renaming it to the output): no longer removed.
+  void release();
+
+ private:
+  std::string path_;
+  SignalCleanup on_signal_;
+};
 
 /// Reads a whole text file ("-": standard input) and records it as an input (path_guard);
 /// throws InputError("path: cannot open ...") if it cannot.

@@ -3,8 +3,9 @@
 // failure, and an interrupt is a failure).
 //
 // Library code that creates something the process must not leave behind registers it for the
-// time it exists: atomic_write its temporary file, run_ffbamg its child process and private
-// directory. The tools' runner installs the handler (install_signal_cleanup; library code never
+// time it exists: a TempFile (core/atomic_file.hpp: atomic_write's temporary, meshplot's SVG for
+// rsvg-convert), run_child its child process (core/child_process.hpp: bamgquad's ffbamg,
+// meshplot's rsvg-convert), run_ffbamg its private directory. The tools' runner installs the handler (install_signal_cleanup; library code never
 // installs handlers). On a signal the handler kills the registered children (SIGKILL, then
 // waits for them, so they write nothing more), unlinks the registered files, removes the
 // registered directories, and re-raises the signal with its default action: the process ends by

@@ -92,6 +92,16 @@ class Cursor {
     return std::string(line.substr(q1 + 1, q2 == std::string_view::npos ? std::string_view::npos : q2 - q1 - 1));
   }
 
+  /// True when the next token is `word` (nothing read). Safe between binary blocks too: their
+  /// first bytes (a small integer) are neither blanks nor '$'.
+  bool next_is(std::string_view word) const {
+    const char* q = p_;
+    while (q < end_ && is_space(*q)) ++q;
+    if (static_cast<size_t>(end_ - q) < word.size() || std::string_view(q, word.size()) != word) return false;
+    q += word.size();
+    return q == end_ || is_space(*q);
+  }
+
   /// Reads "$EndNAME".
   void expect_end(const std::string& name) {
     const std::string want = "$End" + name;

@@ -138,6 +138,13 @@ class MshReader {
   std::vector<RawView> views_;
   Mesh m_;
 
+  /// A header's count that disagrees with what the section lists is a damaged file (it used to be
+  /// read as the section says): "the header says 20 nodes, but the blocks list 9".
+  void check_header(long long header, long long listed, const std::string& noun, const char* lists = "the blocks list") {
+    if (header != listed)
+      c_.fail("the header says " + std::to_string(header) + " " + noun + ", but " + lists + " " + std::to_string(listed));
+  }
+
   /// A count that cannot exceed what the rest of the file could hold.
   long long bounded(long long n, const char* what) {
     if (n < 0 || static_cast<unsigned long long>(n) > size_)
@@ -244,9 +251,7 @@ class MshReader {
       }
       listed += n;
     }
-    // a header that disagrees with its blocks is a damaged file (it was read as the blocks say)
-    if (listed != total)
-      c_.fail("the header says " + std::to_string(total) + " nodes, but the blocks list " + std::to_string(listed));
+    check_header(total, listed, "nodes");
     c_.expect_end("Nodes");
   }
 
@@ -339,11 +344,14 @@ class MshReader {
     have_elements_ = true;
     if (c_.binary) c_.begin_binary();
     const long long nblocks = bounded(c_.any_size("number of element blocks"), "number of element blocks");
-    c_.any_size("number of elements");
-    c_.any_size("minimum element tag");
-    c_.any_size("maximum element tag");
+    const long long total = c_.any_size("number of elements");
+    const long long min_tag = c_.any_size("minimum element tag");
+    const long long max_tag = c_.any_size("maximum element tag");
     long long nodes[(kMaxGeometricOrder + 1) * (kMaxGeometricOrder + 1)];
-    for (long long b = 0; b < nblocks; ++b) {
+    // the blocks up to $EndElements, whatever the header says: then the header is checked
+    // against them (number of blocks, of elements, smallest and largest tag)
+    long long b = 0, listed = 0, lo = 0, hi = 0;
+    for (; !c_.next_is("$EndElements"); ++b) {
       const long long dim = c_.any_int("entity dimension");
       const long long entity = c_.any_int("entity tag");
       const long long type = c_.any_int("element type");
@@ -356,8 +364,16 @@ class MshReader {
         const long long tag = c_.any_size("element tag");
         for (int k = 0; k < npe; ++k) nodes[k] = c_.any_size("element nodes");
         add_element(type, tag, phys, entity, nodes);
+        lo = listed == 0 ? tag : std::min(lo, tag);
+        hi = listed == 0 ? tag : std::max(hi, tag);
+        ++listed;
       }
     }
+    check_header(nblocks, b, "element blocks", "the section has");
+    check_header(total, listed, "elements");
+    if (listed > 0 && (min_tag != lo || max_tag != hi))
+      c_.fail("the header says element tags " + std::to_string(min_tag) + " to " + std::to_string(max_tag) +
+              ", but the blocks list tags " + std::to_string(lo) + " to " + std::to_string(hi));
     c_.expect_end("Elements");
   }
 
@@ -366,8 +382,10 @@ class MshReader {
     have_elements_ = true;
     const long long n = bounded(c_.integer("number of elements"), "number of elements");
     long long nodes[(kMaxGeometricOrder + 1) * (kMaxGeometricOrder + 1)];
+    // the elements up to $EndElements, whatever the header says: then the header is checked
+    long long listed = 0;
     if (!c_.binary) {
-      for (long long e = 0; e < n; ++e) {
+      for (; !c_.next_is("$EndElements"); ++listed) {
         const long long tag = c_.integer("element tag");
         const long long type = c_.integer("element type");
         const long long ntags = bounded(c_.integer("number of element tags"), "number of element tags");
@@ -384,8 +402,7 @@ class MshReader {
       }
     } else {
       c_.begin_binary();
-      long long done = 0;
-      while (done < n) {
+      while (!c_.next_is("$EndElements")) {
         const long long type = c_.bin_int("element type");
         const long long count = bounded(c_.bin_int("number of elements"), "number of elements");
         const long long ntags = bounded(c_.bin_int("number of element tags"), "number of element tags");
@@ -403,9 +420,10 @@ class MshReader {
           for (int k = 0; k < npe; ++k) nodes[k] = c_.bin_int("element nodes");
           add_element(type, tag, phys, entity, nodes);
         }
-        done += count;
+        listed += count;
       }
     }
+    check_header(n, listed, "elements", "the section lists");
     c_.expect_end("Elements");
   }
 

@@ -286,6 +286,7 @@ EnergyTimers& EnergyTimers::operator+=(const EnergyTimers& o) {
   grid_searches += o.grid_searches;
   box_queries += o.box_queries;
   box_hits += o.box_hits;
+  ellipse_queries += o.ellipse_queries;
   return *this;
 }
 EnergyWorkspace::~EnergyWorkspace() = default;
@@ -401,11 +402,12 @@ EnergyResult lp_energy(const Background& bg, const std::vector<Vec2>& sites, dou
     T.rebuilds = ws->impl->rebuilds;
     T.carried = ws->impl->carried;
     T.tree_refits = ws->impl->tree_refits;
-    T.box_queries = T.box_hits = T.grid_searches = 0;
+    T.box_queries = T.box_hits = T.grid_searches = T.ellipse_queries = 0;
     for (const auto& th : ws->impl->threads) {
       T.grid_searches += th.rvd.grid_searches;
       T.box_queries += th.rvd.box_queries;
       T.box_hits += th.rvd.box_hits;
+      T.ellipse_queries += th.rvd.ellipse_queries;
     }
     T.integrate += std::chrono::duration<double>(t2 - t1).count();
     ++T.evaluations;

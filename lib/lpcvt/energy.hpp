@@ -92,6 +92,7 @@ struct EnergyTimers {
                                        ///< cell's bucket grid (cell_grid.hpp); the others:
   long box_queries = 0, box_hits = 0;  ///< metric cells' security-radius searches: site-tree
                                        ///< queries / answered from a cached box (rvd.hpp)
+  long ellipse_queries = 0;            ///< ... answered by an ellipse query of the site tree (rvd.hpp)
   EnergyTimers& operator+=(const EnergyTimers& o);
 };
 

@@ -276,7 +276,7 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
   else
     r.stop = "last minimisation stopped early: " + last.stop;
   r.mesh = triangulate_domain(sites, r.nfixed, r.boundary.segments, r.boundary.segment_group, groups);
-  if (bg.metric_cells()) r.metric_flips = metric_flip_triangles(r.mesh, bg);
+  if (bg.metric_cells()) r.metric_flips = metric_flip_triangles(r.mesh, bg, &r.metric_flips_capped);
   if (!bg.is_analytic()) attach_frame(r.mesh, bg);
   say(std::to_string(r.sites.size()) + " points (requested " + fmt("%.0f", r.requested_points) + "), " +
       std::to_string(r.mesh.num_cells()) + " triangles; " + r.stop);
@@ -298,7 +298,7 @@ void attach_frame(Mesh& m, const Background& bg) {
   set_frame_field(m, M);
 }
 
-long metric_flip_triangles(Mesh& m, const Background& bg) {
+long metric_flip_triangles(Mesh& m, const Background& bg, bool* capped) {
   std::vector<std::array<int, 3>> tris(m.num_cells());
   for (int c = 0; c < m.num_cells(); ++c) tris[c] = {m.cells[c].v[0], m.cells[c].v[1], m.cells[c].v[2]};
   // the energy's neighbour graph rule, everywhere (also across metric jumps: Euclidean triangles
@@ -310,6 +310,7 @@ long metric_flip_triangles(Mesh& m, const Background& bg) {
     m.cells[c].v = {g.tris[c][0], g.tris[c][1], g.tris[c][2], -1};
     m.cells[c].nv = 3;
   }
+  if (capped) *capped = g.capped;
   return g.flips;
 }
 
@@ -325,6 +326,7 @@ nlohmann::json to_json(const LpcvtResult& r) {
   j["boundary_norm"] = r.boundary_norm;
   j["triangles"] = r.mesh.num_cells();
   j["metric_flips"] = r.metric_flips;
+  j["metric_flips_capped"] = r.metric_flips_capped;
   j["requested_triangles"] = 2 * r.metric_area;
   j["iterations"] = r.iterations;
   j["evaluations"] = r.evaluations;

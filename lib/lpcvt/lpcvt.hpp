@@ -116,6 +116,7 @@ struct LpcvtResult {
   int nfixed = 0;                   ///< number of boundary sites
   BoundaryPoints boundary;
   long metric_flips = 0;            ///< metric cells: flips of the output triangulation (below)
+  bool metric_flips_capped = false; ///< ... stopped at the cap: not the metric Delaunay triangulation
   std::vector<IterationRecord> history;
   std::vector<CycleRecord> cycles;
   std::vector<LevelRecord> levels;  ///< coarsest first; one entry without multilevel
@@ -150,8 +151,9 @@ void attach_frame(Mesh& m, const Background& bg);
 
 /// Makes the triangulation m Delaunay in bg's metric (metric_graph.hpp): Lawson flips with the
 /// metric of the background cell at each flip quadrilateral's centroid; boundary edges are never flipped.
-/// Returns the number of flips.
-long metric_flip_triangles(Mesh& m, const Background& bg);
+/// Returns the number of flips; *capped (when given): they stopped at the cap (kMaxFlipsPerSite),
+/// so m is not Delaunay in the metric.
+long metric_flip_triangles(Mesh& m, const Background& bg, bool* capped = nullptr);
 
 nlohmann::json to_json(const LpcvtResult& r);
 

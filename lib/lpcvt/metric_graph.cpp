@@ -96,7 +96,7 @@ void flip_and_list(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric&
   }
   std::vector<char>& flipped = w.flipped;
   flipped.assign(parallel_metric ? nt : 0, 0);
-  const long cap = 20L * std::max(n, 1);
+  const long cap = kMaxFlipsPerSite * std::max(n, 1);
   auto edge_key = [n](int a, int b) { return static_cast<long long>(std::min(a, b)) * n + std::max(a, b); };
   std::unordered_set<long long>& removed = w.removed;
   removed.clear();

@@ -26,7 +26,17 @@
 // so never asks to flip back. With the metric at the edge's midpoint instead, the two diagonals
 // of a quadrilateral straddling a metric jump see different metrics and flip back and forth
 // (an S-shock frame, 1623 triangles: 16,780 flips until the cap, a cell with scaled Jacobian
-// 0.007 in the quads). A cap of 20 flips per site guards against longer cycles (reported).
+// 0.007 in the quads). An edge a flip removed is never made again, so the flips end for any
+// metric (at most one per pair of sites).
+//
+// Flip cap (kMaxFlipsPerSite): how many flips there are grows with the metric's stretch, since
+// they start from the Euclidean triangulation — per site, measured on lpcvt's sites of constant
+// frames at 30 degrees: 5 at 20:1, 18-24 at 100-300:1, 47-100 at 1000:1. The cap bounds their
+// time and the memory of the removed edges where a pathological case would need far more;
+// reaching it leaves a triangulation that is not the metric Delaunay one (`capped`). It was 20
+// per site, which cut every 1000:1 frame's flips short, silently: lpcvt's output kept long
+// Euclidean triangles (median largest metric angle 179.8 degrees instead of 76-89) and the
+// energy's neighbours were wrong (a 1000:1 frame: 130 evaluations instead of 14, 10x the time).
 #include <array>
 #include <functional>
 #include <unordered_set>
@@ -39,6 +49,10 @@
 
 namespace quadapt::lpcvt {
 
+/// The most Lawson flips per site of one metric_delaunay / metric_delaunay_update (header): twice
+/// the most measured at 1000:1.
+constexpr long kMaxFlipsPerSite = 200;
+
 struct MetricGraph {
   std::vector<int> ptr, adj;               ///< CSR neighbour lists, #sites + 1 / 2 #edges
   std::vector<std::array<int, 3>> tris;    ///< the flipped triangles, CCW
@@ -46,7 +60,7 @@ struct MetricGraph {
                                            ///< tris[t][k] (-1: none), for metric_delaunay_update
   long flips = 0;                          ///< flips made (by the last build or update)
   long inverted = 0;                       ///< inverted triangles carried (metric_delaunay_update)
-  bool capped = false;                     ///< the flip cap was reached
+  bool capped = false;                     ///< the flip cap (kMaxFlipsPerSite) was reached
   /// Buffers of the flips, kept between updates (an evaluation of the energy carries the graph
   /// and updates it every time: no allocation once they are large enough). Not part of the graph.
   struct Scratch {

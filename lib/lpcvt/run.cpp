@@ -1,6 +1,9 @@
 #include "lpcvt/run.hpp"
 
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "core/error.hpp"
@@ -153,7 +156,85 @@ Background frame_background(const Frame& f, const LpcvtJob& job, nlohmann::json&
   Background bg = Background::from_frame(f, job.scale > 0 ? job.scale : frame_metric_scale());
   report["options"]["metric"] = "frame Vinv";
   finish_background(bg, job, report, log);
+  const FrameSpan span = frame_span(bg);
+  const std::string warning = frame_span_warning(span);
+  report["frame_span"] = {{"cells_across_long_axis", span.cells_across},
+                          {"stretch", span.stretch},
+                          {"warning", warning.empty() ? nlohmann::json() : nlohmann::json(warning)}};
   return bg;
+}
+
+namespace {
+/// The convex hull of the cells' vertices (Andrew's monotone chain): the domain's extent along any
+/// direction is that of its hull, so each cell's extent costs the hull's few vertices.
+std::vector<Vec2> vertex_hull(const Mesh& m) {
+  std::vector<Vec2> p;
+  for (const Cell& c : m.cells)
+    for (int k = 0; k < c.nv; ++k) p.push_back(m.nodes[c.v[k]]);
+  std::sort(p.begin(), p.end(), [](const Vec2& a, const Vec2& b) { return a.x() != b.x() ? a.x() < b.x() : a.y() < b.y(); });
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return p;
+  std::vector<Vec2> h(2 * p.size());
+  size_t k = 0;
+  auto turn = [](const Vec2& o, const Vec2& a, const Vec2& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  for (size_t i = 0; i < p.size(); ++i) {  // lower hull
+    while (k >= 2 && turn(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {  // upper hull
+    while (k >= t && turn(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  h.resize(k - 1);
+  return h;
+}
+}  // namespace
+
+FrameSpan frame_span(const Background& bg) {
+  const Mesh& m = bg.mesh();
+  const std::vector<Vec2> hull = vertex_hull(m);
+  struct Span {
+    double across, stretch, weight;
+  };
+  std::vector<Span> cells;
+  double total = 0;
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const Mat2 M = bg.mesh_cell_metric(c) / frame_metric_scale();
+    // M^T M = V^-T V^-1: its small eigenvalue 1/h1^2 along the long axis v, its large one 1/h2^2
+    const Eigen::SelfAdjointEigenSolver<Mat2> eig(M.transpose() * M);
+    const double h1 = 1 / std::sqrt(eig.eigenvalues()(0)), h2 = 1 / std::sqrt(eig.eigenvalues()(1));
+    const Vec2 v = eig.eigenvectors().col(0);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Vec2& x : hull) {
+      lo = std::min(lo, v.dot(x));
+      hi = std::max(hi, v.dot(x));
+    }
+    const double w = cell_area(m, c) * std::abs(M.determinant());
+    cells.push_back({(hi - lo) / (2 * h1), h1 / h2, w});
+    total += w;
+  }
+  auto median = [&](double Span::*f) {
+    std::sort(cells.begin(), cells.end(), [&](const Span& a, const Span& b) { return a.*f < b.*f; });
+    double acc = 0;
+    for (const Span& c : cells)
+      if ((acc += c.weight) >= total / 2) return c.*f;
+    return cells.empty() ? 0.0 : cells.back().*f;
+  };
+  FrameSpan s;
+  s.cells_across = median(&Span::across);
+  s.stretch = median(&Span::stretch);
+  return s;
+}
+
+std::string frame_span_warning(const FrameSpan& s) {
+  if (!(s.cells_across < kMinCellsAcross)) return "";
+  return "the frame asks for only " + sci(s.cells_across) + " cells across the domain along its long axis (stretch " +
+         sci(s.stretch) + "), fewer than " + sci(kMinCellsAcross) +
+         ": lpcvt's points are two cells apart, so all or nearly all of them lie on the boundary and every cell "
+         "reaches from wall to wall (a degenerate mesh, which cannot follow the frame); ask for cells shorter along "
+         "the long axis (h1), or check the frame's size convention (--convention) and --complexity";
 }
 
 Background saddle_background(int grid, bool sampled, const LpcvtJob& job, nlohmann::json& report,
@@ -209,7 +290,8 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
   rep["energy_seconds"] = {{"delaunay", et.delaunay}, {"integrate", et.integrate}, {"evaluations", et.evaluations},
                            {"updates", et.updates}, {"rebuilds", et.rebuilds}, {"metric_graph_carried", et.carried},
                            {"site_tree_refits", et.tree_refits}, {"security_grid_searches", et.grid_searches},
-                           {"security_box_queries", et.box_queries}, {"security_box_hits", et.box_hits}};
+                           {"security_box_queries", et.box_queries}, {"security_box_hits", et.box_hits},
+                           {"security_ellipse_queries", et.ellipse_queries}};
   const nlohmann::json figures = to_json(r);
   for (auto& [k, v] : figures.items()) rep[k] = v;
   rep["area"] = chk.area;

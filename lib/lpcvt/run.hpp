@@ -49,9 +49,31 @@ struct LpcvtJob {
 /// area), before any point is made.
 void check_point_budget(const Background& bg, const LpcvtJob& job, const std::string& path);
 
+/// How far a frame's cells reach across its domain (docs/lpcvt.md, "A frame that spans the
+/// domain"): per background cell, the domain's extent along the cell's long axis v (the largest
+/// minus the smallest v . x over its nodes) over the target cell's length 2 h1 — the number of
+/// such cells across the domain along that axis — and the cell's stretch h1 / h2; each is the
+/// median over the cells weighted by the points they ask for (metric area), so a few coarse cells
+/// of a graded frame do not count.
+struct FrameSpan {
+  double cells_across = 0;  ///< target cells across the domain along the long axis (weighted median)
+  double stretch = 1;       ///< h1 / h2 (weighted median)
+};
+/// The span of the frame the background meshes (M = M_eff / frame_metric_scale()).
+FrameSpan frame_span(const Background& bg);
+/// Below this many cells across, fewer than two of lpcvt's points (two cells apart) fit across the
+/// domain's extent: measured on constant frames, every point then lies on the boundary at 30 and
+/// 45 degrees (up to 3.6 and 3.5 cells) and every cell reaches from wall to wall; the frames of
+/// the tests, PHiLiP's and the constant frames of stretch 1-20 ask for 7 or more.
+constexpr double kMinCellsAcross = 4;
+/// The warning for a span below kMinCellsAcross (what the frame asks, what comes out, what to
+/// change), or "" for none.
+std::string frame_span_warning(const FrameSpan& s);
+
 /// The background of a frame: M_eff = scale * M, then --smooth/--gradation/--orientation, the complexity
 /// rescale and the cells-per-triangle factor. Writes report keys smoothing, gradation,
-/// orientation, frame_cells, complexity, degree, metric_rescale, target_cells, cells_per_triangle and
+/// orientation, frame_cells, complexity, degree, metric_rescale, target_cells, cells_per_triangle,
+/// frame_span (cells_across_long_axis, stretch, warning: frame_span_warning or null) and
 /// options.metric_scale, options.cells. The saddle background's default is Euclidean cells
 /// (set job.metric_cells = false for the thesis's validation, as the tool does). Throws InputError for inconsistent options.
 Background frame_background(const Frame& f, const LpcvtJob& job, nlohmann::json& report,

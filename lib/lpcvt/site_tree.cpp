@@ -47,7 +47,7 @@ void SiteTree::refit(const std::vector<Vec2>& sites) {
   for (int k = 0; k < n; ++k) p_[k] = sites[idx_[k]];
 #pragma omp parallel if (n >= kParallelSites && !omp_in_parallel())
 #pragma omp single
-  fit(0, n, 0);
+  bounds_ = fit(0, n, 0);
 }
 
 std::array<double, 4> SiteTree::fit(int b, int e, int depth) {
@@ -110,6 +110,63 @@ void SiteTree::query(const Vec2& lo, const Vec2& hi, std::vector<int>& out) cons
     const bool low = (r.depth & 1 ? ly : lx) <= s.lower_max, high = (r.depth & 1 ? hy : hx) >= s.upper_min;
     if (high) stack[top++] = {m + 1, r.e, r.depth + 1};
     if (low) stack[top++] = {r.b, m, r.depth + 1};
+  }
+}
+
+namespace {
+/// The smallest u^T G u over the box [x0, x1] x [y0, y1] of u (0 when the box holds u = 0): on
+/// one of its edges otherwise, where the quadratic in the free coordinate is minimised and clamped.
+double box_min(const Mat2& G, double x0, double x1, double y0, double y1) {
+  if (x0 <= 0 && 0 <= x1 && y0 <= 0 && 0 <= y1) return 0;
+  const double a = G(0, 0), b = G(0, 1), d = G(1, 1);
+  double best = std::numeric_limits<double>::infinity();
+  for (double ux : {x0, x1}) {
+    const double uy = std::clamp(-b * ux / d, y0, y1);
+    best = std::min(best, a * ux * ux + 2 * b * ux * uy + d * uy * uy);
+  }
+  for (double uy : {y0, y1}) {
+    const double ux = std::clamp(-b * uy / a, x0, x1);
+    best = std::min(best, a * ux * ux + 2 * b * ux * uy + d * uy * uy);
+  }
+  return best;
+}
+}  // namespace
+
+void SiteTree::query_ellipse(const Vec2& c, const Mat2& G, double r2, std::vector<int>& out) const {
+  // iterative, depth first, the lower half before the upper one (the order of query()); every
+  // range carries the bounds of its sites relative to c, narrowed along the split axes
+  struct Range {
+    int b, e, depth;
+    double box[4];  // x: min, max; y: min, max, of u = site - c
+  };
+  Range stack[64];
+  int top = 0;
+  if (idx_.empty()) return;
+  const double lim = r2 * (1 + kEllipseSlack);
+  auto inside = [&](const Vec2& p) {
+    const double ux = p.x() - c.x(), uy = p.y() - c.y();
+    return G(0, 0) * ux * ux + 2 * G(0, 1) * ux * uy + G(1, 1) * uy * uy < lim;
+  };
+  stack[top++] = {0, static_cast<int>(idx_.size()), 0,
+                  {bounds_[0] - c.x(), bounds_[1] - c.x(), bounds_[2] - c.y(), bounds_[3] - c.y()}};
+  while (top > 0) {
+    const Range r = stack[--top];
+    if (box_min(G, r.box[0], r.box[1], r.box[2], r.box[3]) >= lim) continue;
+    if (r.e - r.b <= kLeaf) {
+      for (int k = r.b; k < r.e; ++k)
+        if (inside(p_[k])) out.push_back(idx_[k]);
+      continue;
+    }
+    const int m = (r.b + r.e) / 2, a = r.depth & 1;
+    if (inside(p_[m])) out.push_back(idx_[m]);
+    const Split& s = split_[m];
+    const double ca = a ? c.y() : c.x();
+    Range hi = {m + 1, r.e, r.depth + 1, {r.box[0], r.box[1], r.box[2], r.box[3]}};
+    hi.box[2 * a] = std::max(hi.box[2 * a], s.upper_min - ca);
+    Range lo = {r.b, m, r.depth + 1, {r.box[0], r.box[1], r.box[2], r.box[3]}};
+    lo.box[2 * a + 1] = std::min(lo.box[2 * a + 1], s.lower_max - ca);
+    if (m + 1 < r.e) stack[top++] = hi;
+    if (r.b < m) stack[top++] = lo;
   }
 }
 

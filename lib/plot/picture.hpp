@@ -15,8 +15,10 @@ PictureFormat picture_format(const std::string& path);
 bool png_available();
 
 /// Writes the SVG document `svg` to `path` (.svg or .png, see picture_format). PNG: the SVG is
-/// rendered at its own pixel size on a white background. Throws ExternalError when
-/// rsvg-convert is missing or fails, InputError for an unknown extension.
+/// rendered at its own pixel size on a white background by rsvg-convert, a child process
+/// (core/child_process.hpp) reading a temporary SVG beside the PNG's temporary: an interrupt
+/// kills it and removes both temporaries. Throws ExternalError when rsvg-convert is missing or
+/// fails, InputError for an unknown extension.
 void write_picture(const std::string& svg, const std::string& path);
 
 }  // namespace quadapt::plot

@@ -26,6 +26,19 @@ h = L[i].split()
 L[i] = " ".join([h[0], str(int(h[1]) + 11)] + h[2:])
 open(sys.argv[2], "w").write("\n".join(L))
 PY
+# the same for $Elements (MSH 4.1): a header counting 3 more elements than its blocks list, one
+# whose largest element tag is not the blocks' (both were read without a word), one counting a
+# block too many
+python3 - "$good" "$T/in" <<'PY'
+import sys
+L = open(sys.argv[1]).read().split("\n")
+i = L.index("$Elements") + 1
+h = L[i].split()
+for name, header in (("elements_count", [h[0], str(int(h[1]) + 3), h[2], h[3]]),
+                     ("elements_tags", [h[0], h[1], h[2], str(int(h[3]) + 1)]),
+                     ("elements_blocks", [str(int(h[0]) + 1)] + h[1:])):
+    open(f"{sys.argv[2]}/{name}.msh", "w").write("\n".join(L[:i] + [" ".join(header)] + L[i + 1:]))
+PY
 sed 's/^1 1 2 5 4$/1 1 4 5 2/' "$good" > "$T/in/inverted.msh"
 cat > "$T/in/triangle.msh" <<'MSH'
 $MeshFormat
@@ -45,6 +58,23 @@ $Elements
 2 2 2 1 1 2 5 3
 $EndElements
 MSH
+
+# MSH 2.2: a header counting one element more than the section lists (was "expected an integer
+# (element tag), found '$EndElements'", which does not say what is wrong)
+sed '/^\$Elements$/{n;s/^2$/3/}' "$T/in/triangle.msh" > "$T/in/elements22.msh"
+# and both in binary files (the fuzzing corpus's squares): the 4.1 header's count (8-byte integers)
+# and the 2.2 header's (an ASCII line before the binary blocks), each one too large
+python3 - "$S/tests/fuzz/corpus/msh" "$T/in" <<'PY'
+import struct, sys
+b = open(f"{sys.argv[1]}/square_bin41.msh", "rb").read()
+i = b.index(b"$Elements\n") + len(b"$Elements\n")
+nb, ne, lo, hi = struct.unpack("<4Q", b[i:i + 32])
+open(f"{sys.argv[2]}/elements41_bin.msh", "wb").write(b[:i] + struct.pack("<4Q", nb, ne + 2, lo, hi) + b[i + 32:])
+b = open(f"{sys.argv[1]}/square_bin22.msh", "rb").read()
+i = b.index(b"$Elements\n") + len(b"$Elements\n")
+j = b.index(b"\n", i)
+open(f"{sys.argv[2]}/elements22_bin.msh", "wb").write(b[:i] + str(int(b[i:j]) + 1).encode() + b[j:])
+PY
 
 check() {  # check NAME EXPECTED-PROBLEM [extra args]
   local name=$1 problem=$2
@@ -74,6 +104,12 @@ check nan "non-finite coordinate"
 check triangle "is a triangle, but quadrilaterals are required" --require quads
 check inverted "is inverted"
 check count "\$Nodes: the header says 20 nodes, but the blocks list 9"
+check elements_count "\$Elements: the header says 15 elements, but the blocks list 12"
+check elements_tags "\$Elements: the header says element tags 1 to 13, but the blocks list tags 1 to 12"
+check elements_blocks "\$Elements: the header says 6 element blocks, but the section has 5"
+check elements22 "\$Elements: the header says 3 elements, but the section lists 2"
+check elements41_bin "\$Elements: the header says 14 elements, but the blocks list 12"
+check elements22_bin "\$Elements: the header says 13 elements, but the section lists 12"
 
 # The same files are fine where they are valid: the triangle mesh without --require.
 meshconvert -q "$T/in/triangle.msh" -o "$T/out/ok.msh"

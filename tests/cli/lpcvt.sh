@@ -114,7 +114,33 @@ rc=$?
 set -e
 [ $rc -eq 2 ]
 
-# 6. a real PHiLiP frame, read as it is (short run)
+# 6. a frame that asks for only 3.4 cells across the domain along its long axis (the unit square
+#    at 30 degrees, h1 = 0.2, 500:1; docs/lpcvt.md "A frame that spans the domain"): a warning
+#    before the minimisation naming the frame and the figure, and the report's frame_span; the
+#    points all lie on the walls, and the output is still Delaunay in the metric (its flips used
+#    to stop at a cap of 20 per site: median largest metric angle ~180 degrees, 10x the time)
+$FRAME "$T/span.msh" --n 2 --h1 0.2 --h2 0.0004 --theta 0.5236
+lpcvt "$T/span.msh" -o "$T/span-tri.msh" --phases 1 2> "$T/span.err"
+grep -q "warning: $T/span.msh: the frame asks for only 3.415e+00 cells across the domain along its long axis (stretch 5.000e+02)" "$T/span.err" ||
+  { cat "$T/span.err"; echo "FAIL: no warning on a frame that spans the domain"; exit 1; }
+[ "$(grep -c "cells across the domain" "$T/span.err")" -eq 1 ] || { echo "FAIL: the warning is not one line"; exit 1; }
+$PY - "$T/span-tri.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+s = r["frame_span"]
+assert abs(s["cells_across_long_axis"] - 3.415) < 1e-3 and abs(s["stretch"] - 500) < 1e-6, s
+assert "cells across the domain" in s["warning"], s
+assert r["metric_flips_capped"] is False and r["metric_flips"] > 20 * r["points"], (r["metric_flips"], r["points"])
+assert r["largest_angle_metric_median"] < 100, r["largest_angle_metric_median"]
+PY
+# ... and none on the frames above, which ask for 20 (iso) and 23 (L-shape at 30 degrees) cells across
+lpcvt "$T/L.msh" -o "$T/L2-tri.msh" --max-cycles 1 --max-iterations 5 2> "$T/L.err"
+for f in iso L; do
+  ! grep -q "cells across the domain" "$T/$f.err" || { cat "$T/$f.err"; echo "FAIL: the $f frame warned"; exit 1; }
+done
+$PY -c "import json,sys; s=json.load(open(sys.argv[1]))['frame_span']; assert s['warning'] is None and s['cells_across_long_axis'] >= 20, s" "$T/iso-tri.json"
+
+# 7. a real PHiLiP frame, read as it is (short run)
 D=$QUADAPT_FIXTURES_DIR
 if [ -f "$D/input_ss15_fb_p1_3.msh" ]; then
   lpcvt "$D/input_ss15_fb_p1_3.msh" -o "$T/ss.msh" --max-cycles 1 --max-iterations 30 -q

@@ -1,10 +1,12 @@
 // The security-radius search's bucket grid (lpcvt/cell_grid.hpp): every site of a covered disk
 // among its candidates, uncovered disks refused, and the pieces of RestrictedVoronoi the same
-// bit for bit whether the grid or the site tree answers.
+// bit for bit whether the grid or the site tree answers; the site tree's ellipse query
+// (SiteTree::query_ellipse): every site of the ellipse, far fewer than its box, the same pieces.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "helpers.hpp"
@@ -111,4 +113,64 @@ TEST_CASE("metric pieces: a strongly anisotropic oblique cell takes the grid wit
   CHECK(wd.grid_builds > 32);  // most of the 64 cells
   CHECK(wd.grid_searches > wd.box_queries + wd.box_hits);
   CHECK(same_pieces(a, b));
+}
+
+TEST_CASE("site tree: an ellipse query lists every site of a thin oblique ellipse, far fewer than its box") {
+  std::mt19937 rng(37);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec2> x(20000);
+  for (auto& p : x) p = Vec2(u(rng), u(rng));
+  const SiteTree tree(x);
+  // 500:1 at 30 degrees (the metric cells' G of a 1000:1 frame): its box holds ~250x its area
+  const Mat2 M = rotated_metric(0.2, 0.0004, 0.5236);
+  const Mat2 G = M.transpose() * M, Gi = G.inverse();
+  long inside = 0, listed = 0, boxed = 0;
+  for (int k = 0; k < 200; ++k) {
+    const Vec2 c(u(rng), u(rng));
+    const double r2 = std::pow(0.2 + 3 * u(rng), 2);
+    std::vector<int> e, b;
+    tree.query_ellipse(c, G, r2, e);
+    tree.query(c - Vec2(std::sqrt(r2 * Gi(0, 0)), std::sqrt(r2 * Gi(1, 1))),
+               c + Vec2(std::sqrt(r2 * Gi(0, 0)), std::sqrt(r2 * Gi(1, 1))), b);
+    std::sort(e.begin(), e.end());
+    CHECK(std::adjacent_find(e.begin(), e.end()) == e.end());  // each site once
+    for (int i = 0; i < static_cast<int>(x.size()); ++i) {
+      const Vec2 d = x[i] - c;
+      if (d.dot(G * d) < r2) {
+        ++inside;
+        if (!std::binary_search(e.begin(), e.end(), i)) {
+          FAIL_CHECK("site " << i << " in the ellipse but not listed");
+          break;
+        }
+      }
+    }
+    listed += static_cast<long>(e.size());
+    boxed += static_cast<long>(b.size());
+  }
+  REQUIRE(inside > 1000);
+  CHECK(listed < 2 * inside);   // the ellipse's sites and a margin (kEllipseSlack)
+  CHECK(boxed > 50 * inside);   // what the box query gave
+}
+
+TEST_CASE("metric pieces: the site tree's ellipse queries give its box queries' pieces, bit for bit") {
+  const Background bg = graded_metric_background();
+  int nfixed = 0;
+  const std::vector<Vec2> x = boundary_and_random(bg, 3000, 43, nfixed);
+  const MetricGraph mg = build_metric_graph(bg, x, DelaunayGraph(x, true, false));
+  const SiteTree tree(x);
+  RestrictedVoronoi boxes(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), &tree);
+  RestrictedVoronoi ellipses(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), &tree);
+  for (RestrictedVoronoi* r : {&boxes, &ellipses}) r->set_grid_min_sites(0);  // every search asks the tree
+  boxes.set_ellipse_ratio(std::numeric_limits<double>::infinity());
+  ellipses.set_ellipse_ratio(0);
+  RvdWorkspace wb, we;
+  const std::vector<RvdPiece> a = boxes.all_pieces(&wb), b = ellipses.all_pieces(&we);
+  CHECK(wb.ellipse_queries == 0);
+  CHECK(we.ellipse_queries > 1000);
+  CHECK(we.box_queries + we.box_hits == 0);
+  REQUIRE(a.size() == b.size());
+  bool same = true;
+  for (size_t k = 0; k < a.size() && same; ++k)
+    same = a[k].site == b[k].site && a[k].cell == b[k].cell && a[k].v == b[k].v && a[k].label == b[k].label;
+  CHECK(same);
 }

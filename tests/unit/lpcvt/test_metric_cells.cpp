@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 
 #include <omp.h>
@@ -34,6 +35,16 @@ std::vector<int> in_box(const std::vector<Vec2>& x, const Vec2& c, const Vec2& e
   std::vector<int> all(x.size());
   for (size_t i = 0; i < x.size(); ++i) all[i] = static_cast<int>(i);
   return in_box(x, all, c, e);
+}
+
+/// The edges of the triangles, each once as (smaller, larger) site, sorted.
+std::vector<std::array<int, 2>> edges(const std::vector<std::array<int, 3>>& tris) {
+  std::vector<std::array<int, 2>> e;
+  for (auto t : tris)
+    for (int k = 0; k < 3; ++k) e.push_back({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+  std::sort(e.begin(), e.end());
+  e.erase(std::unique(e.begin(), e.end()), e.end());
+  return e;
 }
 
 double area_of(const std::vector<Vec2>& v) {
@@ -98,18 +109,44 @@ TEST_CASE("metric flips give the Delaunay triangulation of the mapped points (co
   std::vector<Vec2> y(x.size());
   for (size_t i = 0; i < x.size(); ++i) y[i] = M * x[i];
   DelaunayGraph mapped(y, true, false);
-  std::vector<std::array<int, 2>> e1, e2;
-  auto edges = [](const std::vector<std::array<int, 3>>& tris) {
-    std::vector<std::array<int, 2>> e;
-    for (auto t : tris)
-      for (int k = 0; k < 3; ++k) e.push_back({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
-    std::sort(e.begin(), e.end());
-    e.erase(std::unique(e.begin(), e.end()), e.end());
-    return e;
-  };
   CHECK(edges(g.tris) == edges(mapped.triangles()));
   // without the flips the graphs differ (the test can fail)
   CHECK(edges(dt.triangles()) != edges(mapped.triangles()));
+}
+
+TEST_CASE("metric flips at 1000:1: the mapped points' Delaunay triangulation, past the old cap of 20 per site") {
+  // a constant 1000:1 metric at 30 degrees (lpcvt's M_eff of the frame h1 = 0.2, h2 = 2e-4) and
+  // the unit square's wall points one metric unit apart, which is all that frame's sites are: from
+  // the Euclidean triangulation (fans across the square) the flips need more than 20 per site;
+  // stopped there (the cap before kMaxFlipsPerSite) the graph kept long Euclidean edges (lpcvt's
+  // output: median largest metric angle 179.8 degrees)
+  const Mat2 M = rotated_metric(0.8, 0.0008, 0.5236);
+  std::vector<Vec2> x;
+  const Vec2 corner[4] = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  for (int side = 0; side < 4; ++side) {
+    const Vec2 a = corner[side], b = corner[(side + 1) % 4];
+    const int n = static_cast<int>(std::ceil((M * (b - a)).norm()));
+    for (int k = 0; k < n; ++k) x.push_back(a + (b - a) * (k / double(n)));
+  }
+  DelaunayGraph dt(x, true, false);
+  MetricGraph g = metric_delaunay(x, dt.triangles(), [&](const std::array<Vec2, 4>&) { return M; });
+  CHECK_FALSE(g.capped);
+  CHECK(g.flips > 20 * static_cast<long>(x.size()));  // the old cap would have stopped them
+  // every edge locally Delaunay in the metric (the walls' points make co-circular trapezoids, so
+  // the triangulation is one of several Delaunay ones: not compared edge by edge)
+  auto not_delaunay = [&](const std::vector<std::array<int, 3>>& tris) {
+    std::map<std::pair<int, int>, int> opposite;  // directed edge a -> b: the third vertex
+    for (const auto& t : tris)
+      for (int k = 0; k < 3; ++k) opposite[{t[k], t[(k + 1) % 3]}] = t[(k + 2) % 3];
+    int bad = 0;
+    for (const auto& [e, c] : opposite) {
+      auto it = opposite.find({e.second, e.first});
+      if (it != opposite.end() && metric_incircle(M, x[e.first], x[e.second], x[c], x[it->second]) > 1e-9) ++bad;
+    }
+    return bad;
+  };
+  CHECK(not_delaunay(g.tris) == 0);
+  CHECK(not_delaunay(dt.triangles()) > 1000);  // the test can fail
 }
 
 TEST_CASE("metric flips terminate with a discontinuous metric (no flip cycles)") {
