@@ -106,7 +106,12 @@ if command -v rsvg-convert > /dev/null; then
       *) fail "meshplot -o pic.png, $sig while rsvg-convert runs: $res (want ended by signal $num)" ;;
     esac
     child=${res##*child=}
-    sleep 0.2
+    # a killed child may take a moment to be reaped on a loaded machine: up to 5 s
+    for _ in $(seq 50); do
+      { [ -e /proc/$child ] && grep -q rsvg /proc/$child/cmdline 2>/dev/null; } || break
+      sleep 0.1
+    done
+    for _ in $(seq 50); do [ -z "$(running ".pic.tmp-")" ] && break; sleep 0.1; done
     if [ -e /proc/$child ] && grep -q rsvg /proc/$child/cmdline 2>/dev/null; then fail "$sig: rsvg-convert ($child) still runs"; fi
     left=$(running ".pic.tmp-")
     [ -z "$left" ] || fail "$sig: still running on meshplot's temporaries: $left"
