@@ -282,6 +282,10 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
   }
   const bool poly = !mg_ && dt_->has_voronoi();
   const Mat2 G = bg_->partition_metric(q);
+  // how many times the sites of the ellipse {d : d^T G d < r^2} its axis-aligned box holds,
+  // over the same for an ellipse along the axes: 1 along the axes, ~5 for 10:1 at 45 degrees,
+  // ~43 for 100:1 at 30 (the grid's threshold and the ellipse query below both use it)
+  const double box_excess = std::sqrt(G(0, 0) * G(1, 1) / G.determinant());
   ws.queue.clear();
   ws.queue.push_back(s0);
   ws.stamp[s0] = gen;
@@ -326,12 +330,10 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
           // which covers the disks of pieces up to 2x that R whose site is in Q and 1.33x for
           // sites outside Q; candidates() checks, and a disk it does not cover asks the tree
           grid = -1;
-          // The site tree answers a search with the ellipse's axis-aligned box, which holds
-          // sqrt(G11 G22 / det G) times the sites of an axis-aligned ellipse's box (1 for a
-          // metric along the axes, ~5 for 10:1 at 45 degrees, ~43 for 100:1 at 30): the grid
-          // pays from grid_min_sites *box* sites on (measured, docs/bench-lpcvt.md: 100:1 at
-          // 30 degrees on 16 x 16 cells, ~12 sites a cell, 0.40x the CPU, the same output)
-          const double box_excess = std::sqrt(G(0, 0) * G(1, 1) / G.determinant());
+          // The site tree answers a search with the ellipse's axis-aligned box (box_excess
+          // above): the grid pays from grid_min_sites *box* sites on (measured,
+          // docs/bench-lpcvt.md: 100:1 at 30 degrees on 16 x 16 cells, ~12 sites a cell, 0.40x
+          // the CPU, the same output)
           if (Q.area * std::sqrt(G.determinant()) * box_excess >= grid_min_sites_ * 2 * R2 &&
               ws.grid.build(G, Q.v.data(), Q.nv, 4 * std::sqrt(R2), std::sqrt(2 * R2), *tree_, x, 1 << 20)) {
             grid = 1;
@@ -353,7 +355,7 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
           // the ellipse's axis-aligned box over its area: 4/pi for a circle, ~0.6 x the axis
           // ratio for a thin oblique ellipse (the box of a 500:1 ellipse at 30 degrees held
           // ~2,300 sites per search, to keep ~3)
-          if ((4 / M_PI) * std::sqrt(Gi(0, 0) * Gi(1, 1) * G.determinant()) > ellipse_ratio_) {
+          if ((4 / M_PI) * box_excess > ellipse_ratio_) {
             ++ws.ellipse_queries;
             ws.cand.clear();
             tree_->query_ellipse(x[i], G, 4 * R2, ws.cand);
