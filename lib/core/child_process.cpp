@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -42,12 +43,14 @@ ChildExit run_child(const std::vector<std::string>& args, const ChildOptions& op
   std::vector<char*> argv;
   for (auto& a : copy) argv.push_back(a.data());
   argv.push_back(nullptr);
-  // SIGINT / SIGTERM / SIGHUP held back from spawning until the child is registered below, so
-  // that an interrupt never leaves it running; the child starts with them unblocked.
+  // SIGINT / SIGTERM / SIGHUP held back on this thread from spawning until the child is
+  // registered below, and a handler on another thread waits for that (SpawnWindow), so that an
+  // interrupt never leaves it running; the child starts with them unblocked.
   sigset_t held, before;
   sigemptyset(&held);
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&held, sig);
   pthread_sigmask(SIG_BLOCK, &held, &before);
+  std::optional<SpawnWindow> window(std::in_place);
   posix_spawnattr_t attr;
   posix_spawnattr_init(&attr);
   posix_spawnattr_setsigmask(&attr, &before);
@@ -59,6 +62,7 @@ ChildExit run_child(const std::vector<std::string>& args, const ChildOptions& op
   // killed (and waited for) by the signal handler if this process is interrupted meanwhile: it
   // would otherwise run on, writing files that are being removed
   SignalCleanup child = r.spawn_error == 0 ? SignalCleanup::child(pid) : SignalCleanup();
+  window.reset();
   pthread_sigmask(SIG_SETMASK, &before, nullptr);
   if (r.spawn_error != 0) return r;
   while (waitpid(pid, &r.status, 0) < 0)

@@ -3,6 +3,7 @@
 #include <limits.h>
 #include <signal.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -40,9 +41,17 @@ int claim(int kind, const char* path, pid_t pid) {
   return -1;
 }
 
-// Async-signal-safe only: kill, waitpid, unlink, rmdir, sigaction, raise.
+// Threads between spawning a child and registering it (SpawnWindow).
+std::atomic<int> g_spawning{0};
+
+// Async-signal-safe only: nanosleep, kill, waitpid, unlink, rmdir, sigaction, raise.
 void on_signal(int sig) {
   const int saved_errno = errno;
+  // a child being spawned by another thread (its signals blocked) is registered in moments
+  for (int k = 0; k < 2000 && g_spawning.load(std::memory_order_acquire) > 0; ++k) {
+    struct timespec ms {0, 1000000};
+    ::nanosleep(&ms, nullptr);
+  }
   for (Slot& s : g_slots)
     if (s.state.load(std::memory_order_acquire) == kReady && s.kind == kChild && s.pid > 0) {
       ::kill(s.pid, SIGKILL);
@@ -85,6 +94,9 @@ void SignalCleanup::release() {
   g_slots[slot_].state.store(kFree, std::memory_order_release);
   slot_ = -1;
 }
+
+SpawnWindow::SpawnWindow() { g_spawning.fetch_add(1, std::memory_order_acq_rel); }
+SpawnWindow::~SpawnWindow() { g_spawning.fetch_sub(1, std::memory_order_acq_rel); }
 
 void install_signal_cleanup() {
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) {

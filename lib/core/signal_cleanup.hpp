@@ -12,7 +12,7 @@
 // that signal, which a shell reports as status 128 + N (130 for SIGINT, 143 for SIGTERM).
 //
 // The registry is a fixed array of slots holding C strings and pids, written before a slot is
-// published (an atomic flag), so the handler uses only async-signal-safe calls (kill, waitpid,
+// published (an atomic flag), so the handler uses only async-signal-safe calls (nanosleep, kill, waitpid,
 // unlink, rmdir, raise) and never allocates.
 #include <sys/types.h>
 
@@ -46,6 +46,19 @@ class SignalCleanup {
  private:
   explicit SignalCleanup(int slot) : slot_(slot) {}
   int slot_ = -1;
+};
+
+/// Held by a thread while it spawns a child and registers it (SignalCleanup::child), with
+/// SIGINT / SIGTERM / SIGHUP blocked on that thread: a handler running meanwhile on another thread
+/// (a signal sent to the process goes to any thread that does not block it, e.g. an OpenMP worker)
+/// waits for the window to close, up to 2 s, before it kills the registered children — else the
+/// child spawned in the window is not registered yet and is left running.
+class SpawnWindow {
+ public:
+  SpawnWindow();
+  ~SpawnWindow();
+  SpawnWindow(const SpawnWindow&) = delete;
+  SpawnWindow& operator=(const SpawnWindow&) = delete;
 };
 
 /// Installs the handler for SIGINT, SIGTERM and SIGHUP (those left at their default action:

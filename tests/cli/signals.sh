@@ -57,6 +57,26 @@ while p.poll() is None and not caught:
 p.wait()
 print("rc=%d caught=%d child=%d" % (p.returncode, caught, child))
 PY
+# interrupted SIG WHAT NAME CMD...: CMD (interrupt.py SIG WHAT) ended by SIG, and its child, whose
+# command line names NAME, gone 0.2 s later
+interrupted() {
+  local sig=$1 what=$2 name=$3
+  shift 3
+  local num res child
+  num=$(python3 -c "import signal; print(int(signal.$sig))")
+  res=$(python3 interrupt.py "$sig" "$what" "$@")
+  case "$res" in
+    "rc=-$num caught=1 child="*) ;;
+    *) fail "$1, $sig while $name runs: $res (want ended by signal $num)" ;;
+  esac
+  child=${res##*child=}
+  # a killed child may take a moment to be reaped on a loaded machine: up to 5 s
+  for _ in $(seq 50); do
+    { [ -e "/proc/$child" ] && grep -q "$name" "/proc/$child/cmdline" 2>/dev/null; } || break
+    sleep 0.1
+  done
+  if [ -e "/proc/$child" ] && grep -q "$name" "/proc/$child/cmdline" 2>/dev/null; then fail "$1, $sig: $name ($child) still runs"; fi
+}
 
 for sig in SIGINT SIGTERM; do
   num=$(python3 -c "import signal; print(int(signal.$sig))")
@@ -99,20 +119,8 @@ PY
 }
 if command -v rsvg-convert > /dev/null; then
   for sig in SIGTERM SIGINT; do
-    num=$(python3 -c "import signal; print(int(signal.$sig))")
-    res=$(python3 interrupt.py $sig child:.pic.tmp- meshplot -q big.msh -o pic.png)
-    case "$res" in
-      "rc=-$num caught=1 child="*) ;;
-      *) fail "meshplot -o pic.png, $sig while rsvg-convert runs: $res (want ended by signal $num)" ;;
-    esac
-    child=${res##*child=}
-    # a killed child may take a moment to be reaped on a loaded machine: up to 5 s
-    for _ in $(seq 50); do
-      { [ -e /proc/$child ] && grep -q rsvg /proc/$child/cmdline 2>/dev/null; } || break
-      sleep 0.1
-    done
+    interrupted $sig child:.pic.tmp- rsvg-convert meshplot -q big.msh -o pic.png
     for _ in $(seq 50); do [ -z "$(running ".pic.tmp-")" ] && break; sleep 0.1; done
-    if [ -e /proc/$child ] && grep -q rsvg /proc/$child/cmdline 2>/dev/null; then fail "$sig: rsvg-convert ($child) still runs"; fi
     left=$(running ".pic.tmp-")
     [ -z "$left" ] || fail "$sig: still running on meshplot's temporaries: $left"
     if compgen -G '.pic.*' > /dev/null || [ -e pic.png ] || [ -e pic.png.json ]; then fail "$sig: left behind: $(ls -A)"; fi
@@ -135,15 +143,7 @@ dgsolve -q m.msh -c "$E/cases/smooth.json" -p 1 -o sol.msh
 estimate-frame -q sol.msh -o shape.msh
 size-solve -q shape.msh --complexity 20000 -o frame.msh
 for sig in SIGTERM SIGINT; do
-  num=$(python3 -c "import signal; print(int(signal.$sig))")
-  res=$(python3 interrupt.py $sig child bamgquad -q frame.msh -o bq.msh --runs 1)
-  case "$res" in
-    "rc=-$num caught=1 child="*) ;;
-    *) fail "bamgquad, $sig while ffbamg runs: $res (want ended by signal $num)" ;;
-  esac
-  child=${res##*child=}
-  sleep 0.2
-  if [ -e /proc/$child ] && grep -q ffbamg /proc/$child/cmdline 2>/dev/null; then fail "$sig: ffbamg ($child) still runs"; fi
+  interrupted $sig child ffbamg bamgquad -q frame.msh -o bq.msh --runs 1
   if [ -n "$(ls -A tmp)" ]; then fail "$sig: left in TMPDIR: $(ls -A tmp)"; fi
   if [ -e bq.msh ] || compgen -G '.*.tmp-*' > /dev/null; then fail "$sig: an output was written"; fi
 done

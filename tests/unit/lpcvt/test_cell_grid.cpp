@@ -18,11 +18,32 @@
 using namespace lpcvt_test;
 
 namespace {
-/// The same pieces, in the same order, bit for bit.
+/// n sites uniform in the unit square, drawn from rng.
+std::vector<Vec2> uniform_sites(std::mt19937& rng, int n) {
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec2> x(n);
+  for (auto& p : x) p = Vec2(u(rng), u(rng));
+  return x;
+}
+
+/// Boundary and random sites on the graded, turning frame of helpers.hpp (12 x 12 cells), their
+/// metric graph and site tree: what the RestrictedVoronoi of each search are built from.
+struct GradedSites {
+  Background bg = graded_metric_background();
+  int nfixed = 0;
+  std::vector<Vec2> x;
+  MetricGraph mg;
+  SiteTree tree;
+  GradedSites(int n, unsigned seed)
+      : x(boundary_and_random(bg, n, seed, nfixed)), mg(build_metric_graph(bg, x, DelaunayGraph(x, true, false))), tree(x) {}
+  RestrictedVoronoi rvd() const { return RestrictedVoronoi(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), &tree); }
+};
+
+/// The same pieces, bit for bit.
 bool same_pieces(const std::vector<RvdPiece>& a, const std::vector<RvdPiece>& b) {
   if (a.size() != b.size()) return false;
   for (size_t k = 0; k < a.size(); ++k)
-    if (a[k].site != b[k].site || a[k].cell != b[k].cell || a[k].v != b[k].v || a[k].label != b[k].label) return false;
+    if (!(a[k].site == b[k].site && a[k].cell == b[k].cell && a[k].v == b[k].v && a[k].label == b[k].label)) return false;
   return true;
 }
 }  // namespace
@@ -30,8 +51,7 @@ bool same_pieces(const std::vector<RvdPiece>& a, const std::vector<RvdPiece>& b)
 TEST_CASE("cell grid: a covered disk's sites are all candidates; a disk reaching outside is refused") {
   std::mt19937 rng(31);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Vec2> x(20000);
-  for (auto& p : x) p = Vec2(u(rng), u(rng));
+  const std::vector<Vec2> x = uniform_sites(rng, 20000);
   const SiteTree tree(x);
   // a 10:1 metric at 35 degrees (the ellipses' axis-aligned boxes are far larger than them)
   const Mat2 M = rotated_metric(0.02, 0.002, 0.61);
@@ -72,13 +92,8 @@ TEST_CASE("cell grid: a covered disk's sites are all candidates; a disk reaching
 TEST_CASE("metric pieces: the bucket grid gives the site tree's pieces, bit for bit") {
   // a graded, turning frame (helpers.hpp) on 12 x 12 cells with ~70 sites per cell: the grid
   // answers most searches (and the tree the disks that reach beyond it)
-  const Background bg = graded_metric_background();
-  int nfixed = 0;
-  const std::vector<Vec2> x = boundary_and_random(bg, 10000, 41, nfixed);
-  const MetricGraph mg = build_metric_graph(bg, x, DelaunayGraph(x, true, false));
-  const SiteTree tree(x);
-  RestrictedVoronoi with_tree(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), &tree);
-  RestrictedVoronoi with_grid(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), &tree);
+  const GradedSites g(10000, 41);
+  RestrictedVoronoi with_tree = g.rvd(), with_grid = g.rvd();
   with_tree.set_grid_min_sites(0);
   with_grid.set_grid_min_sites(1);
   RvdWorkspace wt, wg;
@@ -118,10 +133,9 @@ TEST_CASE("metric pieces: a strongly anisotropic oblique cell takes the grid wit
 TEST_CASE("site tree: an ellipse query lists every site of a thin oblique ellipse, far fewer than its box") {
   std::mt19937 rng(37);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Vec2> x(20000);
-  for (auto& p : x) p = Vec2(u(rng), u(rng));
+  const std::vector<Vec2> x = uniform_sites(rng, 20000);
   const SiteTree tree(x);
-  // 500:1 at 30 degrees (the metric cells' G of a 1000:1 frame): its box holds ~250x its area
+  // 500:1 at 30 degrees (the metric cells' G of a 1000:1 frame): its box holds ~280x its area
   const Mat2 M = rotated_metric(0.2, 0.0004, 0.5236);
   const Mat2 G = M.transpose() * M, Gi = G.inverse();
   long inside = 0, listed = 0, boxed = 0;
@@ -153,13 +167,8 @@ TEST_CASE("site tree: an ellipse query lists every site of a thin oblique ellips
 }
 
 TEST_CASE("metric pieces: the site tree's ellipse queries give its box queries' pieces, bit for bit") {
-  const Background bg = graded_metric_background();
-  int nfixed = 0;
-  const std::vector<Vec2> x = boundary_and_random(bg, 3000, 43, nfixed);
-  const MetricGraph mg = build_metric_graph(bg, x, DelaunayGraph(x, true, false));
-  const SiteTree tree(x);
-  RestrictedVoronoi boxes(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), &tree);
-  RestrictedVoronoi ellipses(bg, x, mg, std::vector<int>(bg.num_cells(), nfixed), &tree);
+  const GradedSites g(3000, 43);
+  RestrictedVoronoi boxes = g.rvd(), ellipses = g.rvd();
   for (RestrictedVoronoi* r : {&boxes, &ellipses}) r->set_grid_min_sites(0);  // every search asks the tree
   boxes.set_ellipse_ratio(std::numeric_limits<double>::infinity());
   ellipses.set_ellipse_ratio(0);
@@ -168,9 +177,5 @@ TEST_CASE("metric pieces: the site tree's ellipse queries give its box queries' 
   CHECK(wb.ellipse_queries == 0);
   CHECK(we.ellipse_queries > 1000);
   CHECK(we.box_queries + we.box_hits == 0);
-  REQUIRE(a.size() == b.size());
-  bool same = true;
-  for (size_t k = 0; k < a.size() && same; ++k)
-    same = a[k].site == b[k].site && a[k].cell == b[k].cell && a[k].v == b[k].v && a[k].label == b[k].label;
-  CHECK(same);
+  CHECK(same_pieces(a, b));
 }
