@@ -68,8 +68,10 @@ Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, con
   scale_system(A, gs);
   LinearSolverOptions o = opt.solver;
   // Auto = Flow: dgsolve's geometric order with the flow reversed (lib/dg/solve.hpp sweep_order),
-  // so that the block ILU does not depend on the file's cell order
-  if (opt.ordering != AdjointOrdering::Mesh && o.block_order.empty()) o.block_order = sweep_order(mesh, -c);
+  // so that the block ILU does not depend on the file's cell order; with pure advection the
+  // reversed flow's topological order (upwind_order of -c), in which A^T is block triangular
+  if (opt.ordering != AdjointOrdering::Mesh && o.block_order.empty())
+    o.block_order = pure_advection ? upwind_order(mesh, -c) : sweep_order(mesh, -c);
   // Pure advection in the downstream-first order: A^T is block lower triangular, one exact
   // block sweep solves it (adjoint/block_sweep.hpp).
   if (o.kind == LinearSolverKind::Auto && pure_advection && !o.block_order.empty()) {

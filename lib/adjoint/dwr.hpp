@@ -37,10 +37,11 @@ namespace quadapt {
 
 /// Cell order of the adjoint solve (the block sweep's visiting order, the block ILU(0)'s
 /// elimination order).
-///   Flow:  downstream first (downwind_order of -c, lib/dg/solve.hpp): the adjoint of an upwind
-///          scheme carries information against the flow, so in this order the transposed
-///          advection operator is (block) lower triangular — one exact block sweep for pure
-///          advection. When c = 0: dgsolve's sweep in y (the same order as the primal's).
+///   Flow:  downstream first: the adjoint of an upwind scheme carries information against the
+///          flow. Pure advection: upwind_order of -c (lib/dg/solve.hpp), a topological order
+///          of the reversed flow, in which the transposed operator is block lower triangular —
+///          one exact block sweep; with diffusion downwind_order of -c (centroids). When c = 0:
+///          dgsolve's sweep in y (the same order as the primal's).
 ///   Mesh:  the mesh's cell order.
 ///   Auto:  Flow (the default). The mesh order was auto's choice with diffusion until measured
 ///          on adapted meshes, whose file order is arbitrary: gmres-2level needed 46-229

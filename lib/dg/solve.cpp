@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <queue>
 
 #include "core/error.hpp"
+#include "mesh/topology.hpp"
 
 namespace quadapt {
 
@@ -23,6 +26,58 @@ std::vector<int> downwind_order(const Mesh& mesh, const Eigen::Vector2d& c) {
   order.resize(n);
   for (int k = 0; k < n; ++k) order[k] = k;
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key[a] < key[b]; });
+  return order;
+}
+
+std::vector<int> upwind_order(const Mesh& mesh, const Eigen::Vector2d& c) {
+  const std::vector<int> by_key = downwind_order(mesh, c);  // the rank: c . centroid, ties by index
+  std::vector<int> order;
+  if (by_key.empty()) return order;
+  const int n = mesh.num_cells();
+  std::vector<int> rank(n);
+  for (int r = 0; r < n; ++r) rank[by_key[r]] = r;
+  // the upwind graph: across each interior face with c . n != 0, upwind cell -> downwind cell
+  const Topology topo = build_topology(mesh);
+  std::vector<int> indeg(n, 0), out_ptr(n + 1, 0), out;
+  auto upwind_pair = [&](const Face& f, int& up, int& down) {
+    const double s = c.dot(f.normal);  // f.normal: side 0's outward normal
+    if (f.is_boundary() || s == 0) return false;
+    up = s > 0 ? f.cell[0] : f.cell[1];
+    down = s > 0 ? f.cell[1] : f.cell[0];
+    return true;
+  };
+  int up = -1, down = -1;
+  for (const Face& f : topo.faces)
+    if (upwind_pair(f, up, down)) ++out_ptr[up + 1];
+  for (int k = 0; k < n; ++k) out_ptr[k + 1] += out_ptr[k];
+  out.resize(out_ptr[n]);
+  std::vector<int> fill(out_ptr.begin(), out_ptr.end() - 1);
+  for (const Face& f : topo.faces)
+    if (upwind_pair(f, up, down)) {
+      out[fill[up]++] = down;
+      ++indeg[down];
+    }
+  // Kahn's algorithm, the ready cell of least rank first: the centroid order itself wherever it
+  // is already topological; a cycle (non-convex cells) is broken at its cell of least rank
+  std::priority_queue<int, std::vector<int>, std::greater<int>> ready;  // ranks
+  for (int k = 0; k < n; ++k)
+    if (indeg[k] == 0) ready.push(rank[k]);
+  std::vector<char> placed(n, 0);
+  order.reserve(n);
+  int scan = 0;  // by_key[< scan] are placed or queued
+  while (static_cast<int>(order.size()) < n) {
+    if (ready.empty()) {
+      while (placed[by_key[scan]]) ++scan;
+      ready.push(scan);
+    }
+    const int k = by_key[ready.top()];
+    ready.pop();
+    if (placed[k]) continue;
+    placed[k] = 1;
+    order.push_back(k);
+    for (int e = out_ptr[k]; e < out_ptr[k + 1]; ++e)
+      if (--indeg[out[e]] == 0 && !placed[out[e]]) ready.push(rank[out[e]]);
+  }
   return order;
 }
 
@@ -57,7 +112,10 @@ DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& o
   // Elimination order of the block ILU: downwind along c (exact for pure upwind advection), or
   // a sweep in y when c = 0. A geometric order matters on unstructured meshes, whose file order
   // is arbitrary: 44 -> 15 iterations on examples/meshes/unstructured_square.msh.
-  if (so.block_order.empty()) so.block_order = sweep_order(mesh, cs.advection);
+  // Pure advection: the upwind graph's topological order, in which block ILU is the exact block
+  // LU (one iteration; the centroid order is not topological on adapted meshes: docs/adjoint.md).
+  if (so.block_order.empty())
+    so.block_order = cs.advection_only() ? upwind_order(mesh, cs.advection) : sweep_order(mesh, cs.advection);
   if (csc)
     scale_system(A, b);
   else
