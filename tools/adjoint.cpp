@@ -50,8 +50,9 @@ int main(int argc, char** argv) {
                "Fail instead of falling back to UMFPACK when the iterative solver does not converge");
   app.add_option("--ordering", ordering,
                  "Cell order of the adjoint solve (block sweep / block ILU(0)): auto (= flow), flow (downstream "
-                 "first: the cells sorted along -c, or along y when c = 0, as dgsolve orders them; independent "
-                 "of the file's cell order) or mesh (the file's order)")
+                 "first, as dgsolve orders them: pure advection a topological order of the reversed flow's "
+                 "upwind graph, else the cells sorted along -c, or along y when c = 0; independent of the "
+                 "file's cell order) or mesh (the file's order)")
       ->capture_default_str();
   app.add_option("--penalty", opt.dg.penalty_factor,
                  "SIPG penalty factor, as given to dgsolve (the fine space takes factor p/(p+2) on interior faces, "
