@@ -36,6 +36,7 @@ TEST_CASE("dg_solve: report figures and the field u survive write_msh/read_msh e
   write_msh(out, path);
   Mesh back = read_msh(path);
   std::remove(path.c_str());
+  std::remove((path + ".opt").c_str());  // write_msh writes Gmsh's view options beside a DG field
   const CellNodeField* f = back.cell_node_field("u");
   REQUIRE(f != nullptr);
   int p = 0;
