@@ -59,7 +59,7 @@ Eigen::VectorXd read_solution_field(const Mesh& mesh, const std::string& field, 
 
 Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, const Mesh& mesh, int pf,
                               const Eigen::Vector2d& c, bool pure_advection, const AdjointOptions& opt,
-                              LinearSolveInfo* info) {
+                              LinearSolveInfo* info, const Topology* topo) {
   const int nb = (pf + 1) * (pf + 1);
   if (A.block_size() != nb || A.block_rows() != mesh.num_cells() || g.size() != A.rows())
     throw Error("solve_adjoint: matrix / right-hand side do not match degree " + std::to_string(pf) + " on the mesh");
@@ -71,7 +71,7 @@ Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, con
   // so that the block ILU does not depend on the file's cell order; with pure advection the
   // reversed flow's topological order (upwind_order of -c), in which A^T is block triangular
   if (opt.ordering != AdjointOrdering::Mesh && o.block_order.empty())
-    o.block_order = pure_advection ? upwind_order(mesh, -c) : sweep_order(mesh, -c);
+    o.block_order = pure_advection ? upwind_order(mesh, -c, topo) : sweep_order(mesh, -c);
   // Pure advection in the downstream-first order: A^T is block lower triangular, one exact
   // block sweep solves it (adjoint/block_sweep.hpp).
   if (o.kind == LinearSolverKind::Auto && pure_advection && !o.block_order.empty()) {
@@ -162,7 +162,8 @@ DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U
   r.functional_error = r.functional_exact - r.functional;
   sw.lap("residual_and_gradient");
 
-  r.psi = solve_adjoint(std::move(A), g, mesh, p + 1, cs.advection, cs.advection_only(), opt, &r.solve);
+  r.psi = solve_adjoint(std::move(A), g, mesh, p + 1, cs.advection, cs.advection_only(), opt, &r.solve,
+                        &fine.topology());
   sw.lap("adjoint_solve");
 
   r.eta.resize(nc);

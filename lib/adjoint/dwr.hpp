@@ -123,9 +123,10 @@ DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U
 /// gmres-2level, the mesh's continuous bilinear coarse space. Falls back to UMFPACK as
 /// opt.fallback_direct says; throws NumericalError otherwise.
 /// A is taken by value (pass it with std::move to release it once it has been transposed).
+/// `topo`: the mesh's faces, if the caller has them (for the pure-advection order).
 Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, const Mesh& mesh, int pf,
                               const Eigen::Vector2d& c, bool pure_advection, const AdjointOptions& opt,
-                              LinearSolveInfo* info = nullptr);
+                              LinearSolveInfo* info = nullptr, const Topology* topo = nullptr);
 
 /// The degree-p DG solution stored in `mesh` as the CellNodeField `field` (dgsolve's "u"), as a
 /// coefficient vector (#cells (p+1)^2). Throws InputError("PATH: ...") when the field is missing

@@ -29,7 +29,7 @@ std::vector<int> downwind_order(const Mesh& mesh, const Eigen::Vector2d& c) {
   return order;
 }
 
-std::vector<int> upwind_order(const Mesh& mesh, const Eigen::Vector2d& c) {
+std::vector<int> upwind_order(const Mesh& mesh, const Eigen::Vector2d& c, const Topology* topo) {
   const std::vector<int> by_key = downwind_order(mesh, c);  // the rank: c . centroid, ties by index
   std::vector<int> order;
   if (by_key.empty()) return order;
@@ -37,7 +37,11 @@ std::vector<int> upwind_order(const Mesh& mesh, const Eigen::Vector2d& c) {
   std::vector<int> rank(n);
   for (int r = 0; r < n; ++r) rank[by_key[r]] = r;
   // the upwind graph: across each interior face with c . n != 0, upwind cell -> downwind cell
-  const Topology topo = build_topology(mesh);
+  Topology own;
+  if (!topo) {
+    own = build_topology(mesh);
+    topo = &own;
+  }
   std::vector<int> indeg(n, 0), out_ptr(n + 1, 0), out;
   auto upwind_pair = [&](const Face& f, int& up, int& down) {
     const double s = c.dot(f.normal);  // f.normal: side 0's outward normal
@@ -47,12 +51,12 @@ std::vector<int> upwind_order(const Mesh& mesh, const Eigen::Vector2d& c) {
     return true;
   };
   int up = -1, down = -1;
-  for (const Face& f : topo.faces)
+  for (const Face& f : topo->faces)
     if (upwind_pair(f, up, down)) ++out_ptr[up + 1];
   for (int k = 0; k < n; ++k) out_ptr[k + 1] += out_ptr[k];
   out.resize(out_ptr[n]);
   std::vector<int> fill(out_ptr.begin(), out_ptr.end() - 1);
-  for (const Face& f : topo.faces)
+  for (const Face& f : topo->faces)
     if (upwind_pair(f, up, down)) {
       out[fill[up]++] = down;
       ++indeg[down];
@@ -115,7 +119,8 @@ DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& o
   // Pure advection: the upwind graph's topological order, in which block ILU is the exact block
   // LU (one iteration; the centroid order is not topological on adapted meshes: docs/adjoint.md).
   if (so.block_order.empty())
-    so.block_order = cs.advection_only() ? upwind_order(mesh, cs.advection) : sweep_order(mesh, cs.advection);
+    so.block_order =
+        cs.advection_only() ? upwind_order(mesh, cs.advection, &dg.topology()) : sweep_order(mesh, cs.advection);
   if (csc)
     scale_system(A, b);
   else

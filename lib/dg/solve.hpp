@@ -46,8 +46,10 @@ std::vector<int> downwind_order(const Mesh& mesh, const Eigen::Vector2d& c);
 /// an adapted S-shock mesh) it is the order in which the upwind DG matrix is block triangular
 /// and block ILU exact. A cycle (possible only with non-convex cells; convex cells in 2-D always
 /// have a topological order along a constant direction) is broken at its cell of least
-/// c . centroid. Empty when c = 0.
-std::vector<int> upwind_order(const Mesh& mesh, const Eigen::Vector2d& c);
+/// c . centroid. Empty when c = 0. `topo`: the mesh's faces when the caller has them (a
+/// DGDiscretization's), else they are built here (build_topology is a large part of a
+/// pure-advection dgsolve).
+std::vector<int> upwind_order(const Mesh& mesh, const Eigen::Vector2d& c, const Topology* topo = nullptr);
 
 /// The block ILU's elimination order of dgsolve and adjoint: downwind_order along c, or a sweep
 /// in y when c = 0 (a geometric order: the file's cell order of an adapted mesh is arbitrary).
