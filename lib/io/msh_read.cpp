@@ -145,6 +145,22 @@ class MshReader {
       c_.fail("the header says " + std::to_string(header) + " " + noun + ", but " + lists + " " + std::to_string(listed));
   }
 
+  /// [lo, hi] grown by the tag of the `listed`-th item (the first one sets it).
+  static void widen(long long& lo, long long& hi, long long listed, long long tag) {
+    lo = listed == 0 ? tag : std::min(lo, tag);
+    hi = listed == 0 ? tag : std::max(hi, tag);
+  }
+
+  /// A 4.1 header's smallest and largest tag must be those of the tags the section lists, [lo, hi]
+  /// (only when it lists any: our writer and Gmsh write 0 0 for none). A tag outside the header's
+  /// range, and a header whose minimum exceeds its maximum, fail here.
+  void check_tag_range(long long min_tag, long long max_tag, long long lo, long long hi, long long listed,
+                       const std::string& noun) {
+    if (listed > 0 && (min_tag != lo || max_tag != hi))
+      c_.fail("the header says " + noun + " tags " + std::to_string(min_tag) + " to " + std::to_string(max_tag) +
+              ", but the blocks list tags " + std::to_string(lo) + " to " + std::to_string(hi));
+  }
+
   /// A count that cannot exceed what the rest of the file could hold.
   long long bounded(long long n, const char* what) {
     if (n < 0 || static_cast<unsigned long long>(n) > size_)
@@ -231,11 +247,11 @@ class MshReader {
     if (c_.binary) c_.begin_binary();
     const long long nblocks = bounded(c_.any_size("number of node blocks"), "number of node blocks");
     const long long total = bounded(c_.any_size("number of nodes"), "number of nodes");
-    c_.any_size("minimum node tag");
-    c_.any_size("maximum node tag");
+    const long long min_tag = c_.any_size("minimum node tag");
+    const long long max_tag = c_.any_size("maximum node tag");
     m_.nodes.reserve(m_.nodes.size() + total);
     std::vector<long long> tags;
-    long long listed = 0;
+    long long listed = 0, lo = 0, hi = 0;
     for (long long b = 0; b < nblocks; ++b) {
       const long long dim = c_.any_int("entity dimension");
       c_.any_int("entity tag");
@@ -248,10 +264,12 @@ class MshReader {
         double x = c_.any_real("node coordinates"), y = c_.any_real("node coordinates"), z = c_.any_real("node coordinates");
         for (int k = 0; k < extra; ++k) c_.any_real("parametric coordinates");
         add_node(tags[i], x, y, z);
+        widen(lo, hi, listed + i, tags[i]);
       }
       listed += n;
     }
     check_header(total, listed, "nodes");
+    check_tag_range(min_tag, max_tag, lo, hi, listed, "node");
     c_.expect_end("Nodes");
   }
 
@@ -364,16 +382,13 @@ class MshReader {
         const long long tag = c_.any_size("element tag");
         for (int k = 0; k < npe; ++k) nodes[k] = c_.any_size("element nodes");
         add_element(type, tag, phys, entity, nodes);
-        lo = listed == 0 ? tag : std::min(lo, tag);
-        hi = listed == 0 ? tag : std::max(hi, tag);
+        widen(lo, hi, listed, tag);
         ++listed;
       }
     }
     check_header(nblocks, b, "element blocks", "the section has");
     check_header(total, listed, "elements");
-    if (listed > 0 && (min_tag != lo || max_tag != hi))
-      c_.fail("the header says element tags " + std::to_string(min_tag) + " to " + std::to_string(max_tag) +
-              ", but the blocks list tags " + std::to_string(lo) + " to " + std::to_string(hi));
+    check_tag_range(min_tag, max_tag, lo, hi, listed, "element");
     c_.expect_end("Elements");
   }
 

@@ -26,6 +26,18 @@ h = L[i].split()
 L[i] = " ".join([h[0], str(int(h[1]) + 11)] + h[2:])
 open(sys.argv[2], "w").write("\n".join(L))
 PY
+# its smallest and largest node tag (MSH 4.1; both were read and thrown away): a node tag outside
+# the header's range (node 9 listed as 10), and a header whose smallest tag exceeds its largest
+python3 - "$good" "$T/in" <<'PY'
+import sys
+L = open(sys.argv[1]).read().split("\n")
+i = L.index("$Nodes") + 1
+h = L[i].split()
+last = i + 1 + int(h[1])  # the block's last node tag (one block, its header at i + 1)
+assert L[last] == h[3]
+open(f"{sys.argv[2]}/nodes_tag_outside.msh", "w").write("\n".join(L[:last] + [str(int(h[3]) + 1)] + L[last + 1:]))
+open(f"{sys.argv[2]}/nodes_tags_reversed.msh", "w").write("\n".join(L[:i] + [" ".join([h[0], h[1], h[3], h[2]])] + L[i + 1:]))
+PY
 # the same for $Elements (MSH 4.1): a header counting 3 more elements than its blocks list, one
 # whose largest element tag is not the blocks' (both were read without a word), one counting a
 # block too many
@@ -70,6 +82,9 @@ b = open(f"{sys.argv[1]}/square_bin41.msh", "rb").read()
 i = b.index(b"$Elements\n") + len(b"$Elements\n")
 nb, ne, lo, hi = struct.unpack("<4Q", b[i:i + 32])
 open(f"{sys.argv[2]}/elements41_bin.msh", "wb").write(b[:i] + struct.pack("<4Q", nb, ne + 2, lo, hi) + b[i + 32:])
+i = b.index(b"$Nodes\n") + len(b"$Nodes\n")
+nb, nn, lo, hi = struct.unpack("<4Q", b[i:i + 32])
+open(f"{sys.argv[2]}/nodes41_bin.msh", "wb").write(b[:i] + struct.pack("<4Q", nb, nn, lo, hi + 1) + b[i + 32:])
 b = open(f"{sys.argv[1]}/square_bin22.msh", "rb").read()
 i = b.index(b"$Elements\n") + len(b"$Elements\n")
 j = b.index(b"\n", i)
@@ -104,6 +119,9 @@ check nan "non-finite coordinate"
 check triangle "is a triangle, but quadrilaterals are required" --require quads
 check inverted "is inverted"
 check count "\$Nodes: the header says 20 nodes, but the blocks list 9"
+check nodes_tag_outside "\$Nodes: the header says node tags 1 to 9, but the blocks list tags 1 to 10"
+check nodes_tags_reversed "\$Nodes: the header says node tags 9 to 1, but the blocks list tags 1 to 9"
+check nodes41_bin "\$Nodes: the header says node tags 1 to 10, but the blocks list tags 1 to 9"
 check elements_count "\$Elements: the header says 15 elements, but the blocks list 12"
 check elements_tags "\$Elements: the header says element tags 1 to 13, but the blocks list tags 1 to 12"
 check elements_blocks "\$Elements: the header says 6 element blocks, but the section has 5"
