@@ -26,9 +26,8 @@ struct TempDir {
   std::vector<SignalCleanup> files_on_signal;
   TempDir() {
     std::string tmpl = (fs::temp_directory_path() / "quadapt-ffbamg-XXXXXX").string();
-    if (!mkdtemp(tmpl.data())) throw ExternalError("cannot create a temporary directory for ffbamg");
+    on_signal = SignalCleanup::new_directory(tmpl);  // made and registered with no signal between
     path = tmpl;
-    on_signal = SignalCleanup::directory(path.string());
   }
   /// The path of `name` in the directory, registered for removal on a signal.
   fs::path file(const std::string& name) {

@@ -46,14 +46,10 @@ ChildExit run_child(const std::vector<std::string>& args, const ChildOptions& op
   // SIGINT / SIGTERM / SIGHUP held back on this thread from spawning until the child is
   // registered below, and a handler on another thread waits for that (SpawnWindow), so that an
   // interrupt never leaves it running; the child starts with them unblocked.
-  sigset_t held, before;
-  sigemptyset(&held);
-  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&held, sig);
-  pthread_sigmask(SIG_BLOCK, &held, &before);
-  std::optional<SpawnWindow> window(std::in_place);
+  std::optional<SignalsHeld> held(std::in_place);
   posix_spawnattr_t attr;
   posix_spawnattr_init(&attr);
-  posix_spawnattr_setsigmask(&attr, &before);
+  posix_spawnattr_setsigmask(&attr, &held->before());
   posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
   pid_t pid = 0;
   r.spawn_error = posix_spawnp(&pid, argv[0], &fa, &attr, argv.data(), environ);
@@ -62,8 +58,7 @@ ChildExit run_child(const std::vector<std::string>& args, const ChildOptions& op
   // killed (and waited for) by the signal handler if this process is interrupted meanwhile: it
   // would otherwise run on, writing files that are being removed
   SignalCleanup child = r.spawn_error == 0 ? SignalCleanup::child(pid) : SignalCleanup();
-  window.reset();
-  pthread_sigmask(SIG_SETMASK, &before, nullptr);
+  held.reset();
   if (r.spawn_error != 0) return r;
   while (waitpid(pid, &r.status, 0) < 0)
     if (errno != EINTR)

@@ -1,7 +1,9 @@
 #include "core/signal_cleanup.hpp"
 
 #include <limits.h>
+#include <pthread.h>
 #include <signal.h>
+#include <stdlib.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -9,6 +11,8 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+
+#include "core/error.hpp"
 
 namespace quadapt {
 
@@ -97,6 +101,29 @@ void SignalCleanup::release() {
 
 SpawnWindow::SpawnWindow() { g_spawning.fetch_add(1, std::memory_order_acq_rel); }
 SpawnWindow::~SpawnWindow() { g_spawning.fetch_sub(1, std::memory_order_acq_rel); }
+
+SignalsHeld::SignalsHeld() {
+  sigset_t held;
+  sigemptyset(&held);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&held, sig);
+  pthread_sigmask(SIG_BLOCK, &held, &before_);
+  window_.emplace();
+}
+
+SignalsHeld::~SignalsHeld() {
+  // the window first: a signal pending on this thread is handled as soon as the mask is restored,
+  // and its handler would wait for an open window (its own) for 2 s
+  window_.reset();
+  pthread_sigmask(SIG_SETMASK, &before_, nullptr);
+}
+
+SignalCleanup SignalCleanup::new_directory(std::string& tmpl, void (*between)(const char* path)) {
+  const SignalsHeld held;
+  if (!::mkdtemp(tmpl.data()))
+    throw ExternalError("cannot create a temporary directory " + tmpl + " (" + std::strerror(errno) + ")");
+  if (between) between(tmpl.c_str());
+  return directory(tmpl);
+}
 
 void install_signal_cleanup() {
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) {

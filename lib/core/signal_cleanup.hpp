@@ -14,8 +14,10 @@
 // The registry is a fixed array of slots holding C strings and pids, written before a slot is
 // published (an atomic flag), so the handler uses only async-signal-safe calls (nanosleep, kill, waitpid,
 // unlink, rmdir, raise) and never allocates.
+#include <signal.h>
 #include <sys/types.h>
 
+#include <optional>
 #include <string>
 
 namespace quadapt {
@@ -33,6 +35,11 @@ class SignalCleanup {
   static SignalCleanup directory(const std::string& path);
   /// A child process the handler kills (before anything is unlinked).
   static SignalCleanup child(pid_t pid);
+  /// Makes a private directory by mkdtemp(tmpl) (tmpl ends in "XXXXXX", which becomes the name)
+  /// and registers it as directory(tmpl), with the signals held across both (SignalsHeld): an
+  /// interrupt between the two left the directory behind. Throws ExternalError when mkdtemp fails.
+  /// `between` (a test hook) runs after the directory is made, before it is registered.
+  static SignalCleanup new_directory(std::string& tmpl, void (*between)(const char* path) = nullptr);
 
   SignalCleanup(SignalCleanup&& o) noexcept : slot_(o.slot_) { o.slot_ = -1; }
   SignalCleanup& operator=(SignalCleanup&& o) noexcept;
@@ -59,6 +66,24 @@ class SpawnWindow {
   ~SpawnWindow();
   SpawnWindow(const SpawnWindow&) = delete;
   SpawnWindow& operator=(const SpawnWindow&) = delete;
+};
+
+/// SIGINT / SIGTERM / SIGHUP blocked on this thread and a SpawnWindow open for as long as it lives:
+/// held by whatever creates something and registers it (run_child's child, new_directory's
+/// directory), so that no signal is handled between the two. A signal arriving meanwhile is handled
+/// once it is gone (the window is closed first, then the thread's mask restored). `before()` is the
+/// thread's mask before (a child starts with it).
+class SignalsHeld {
+ public:
+  SignalsHeld();
+  ~SignalsHeld();
+  SignalsHeld(const SignalsHeld&) = delete;
+  SignalsHeld& operator=(const SignalsHeld&) = delete;
+  const sigset_t& before() const { return before_; }
+
+ private:
+  sigset_t before_;
+  std::optional<SpawnWindow> window_;
 };
 
 /// Installs the handler for SIGINT, SIGTERM and SIGHUP (those left at their default action:
