@@ -70,6 +70,8 @@ CellProblem cell_problem(const Mesh& m, int c) {
 
 }  // namespace
 
+std::string cell_shape_problem(const Mesh& m, int c) { return cell_problem(m, c).text; }
+
 void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions& opt) {
   auto fail = [&](const std::string& problem) { throw InputError(path, problem); };
   const int nc = m.num_cells(), nn = m.num_nodes();

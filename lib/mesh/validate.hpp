@@ -30,6 +30,12 @@ struct ValidateOptions {
   }
 };
 
+/// What validate_mesh finds wrong with the shape of cell c ("inverted: ...", "non-convex: ...",
+/// "degenerate: zero Jacobian at corner 1 (0.5, 0.38) (vertices in line)", ...), or "" when it
+/// accepts it. For code that makes cells (recombine), so that it never writes one that every tool
+/// reading it refuses.
+std::string cell_shape_problem(const Mesh& m, int c);
+
 /// Throws InputError("PATH: problem") on: no cells; a cell type other than required; a
 /// non-finite coordinate; a node index out of range; an inverted (negative Jacobian at a corner)
 /// or degenerate (zero area) cell, naming the cell and its centroid; a boundary edge that is not

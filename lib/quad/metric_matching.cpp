@@ -17,13 +17,13 @@ double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x
 }  // namespace
 
 double metric_quad_quality(const Eigen::Matrix2d& F, const Vec2& a, const Vec2& b, const Vec2& c,
-                           const Vec2& d) {
+                           const Vec2& d, double min_sine) {
   const Vec2 p[4] = {F * a, F * b, F * c, F * d};
   double worst = 0;
   for (int k = 0; k < 4; ++k) {
     const Vec2 u = p[(k + 1) % 4] - p[k], v = p[(k + 3) % 4] - p[k];
     const double cr = cross2(u, v), nu = u.norm(), nv = v.norm();
-    if (!(nu > 0) || !(nv > 0) || !(cr > 1e-12 * nu * nv)) return 0;  // not strictly convex
+    if (!(nu > 0) || !(nv > 0) || !(cr > min_sine * nu * nv)) return 0;  // not strictly convex
     const double ang = std::atan2(cr, u.dot(v)) * 180.0 / M_PI;
     worst = std::max(worst, std::abs(ang - 90.0));
   }
@@ -92,10 +92,10 @@ Mesh metric_pairing(const Mesh& tri, const std::vector<Eigen::Matrix2d>& M,
       F = llt.matrixL().transpose();  // |F e|^2 = e^T G e
     }
     const auto& P = tri.nodes;
-    // a candidate when strictly convex in physical space (a valid quad); its metric quality
-    // (0 when not convex in the averaged metric) ranks it
+    // a candidate when strictly convex in physical space (a valid quad), no corner straight up to
+    // rounding (kMinPairSine); its metric quality (0 when not convex in the averaged metric) ranks it
     const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
-    if (!(metric_quad_quality(I, P[quad[0]], P[quad[1]], P[quad[2]], P[quad[3]]) > 0)) continue;
+    if (!(metric_quad_quality(I, P[quad[0]], P[quad[1]], P[quad[2]], P[quad[3]], kMinPairSine) > 0)) continue;
     const double q = metric_quad_quality(F, P[quad[0]], P[quad[1]], P[quad[2]], P[quad[3]]);
     if (opt.min_quality > 0 && !(q > opt.min_quality)) continue;
     auto e = g.addEdge(node[x.t], node[y.t]);

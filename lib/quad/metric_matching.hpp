@@ -58,9 +58,17 @@ struct MetricMatchingStats {
 };
 
 /// Quality q (above) of the quad (a, b, c, d) (CCW) mapped by the 2x2 factor F (any F with
-/// F^T F = the metric): in [0, 1], 0 when not strictly convex.
+/// F^T F = the metric): in [0, 1], 0 when not strictly convex (a corner whose angle's sine is at
+/// most min_sine).
 double metric_quad_quality(const Eigen::Matrix2d& F, const Vec2& a, const Vec2& b, const Vec2& c,
-                           const Vec2& d);
+                           const Vec2& d, double min_sine = 1e-12);
+
+/// A pair is a candidate only when every corner of its quad in physical space has an angle whose
+/// sine exceeds this: a corner straight up to rounding (three corners in line: lpcvt put a point on
+/// the line between two others, to ~1e-12) makes a quad that validate_mesh may refuse. The smallest
+/// sine chosen on ordinary frames (constant frames of stretch 1-20 at 0-75 degrees, PHiLiP's step-3
+/// frames) is 5e-3.
+constexpr double kMinPairSine = 1e-6;
 
 /// Pairs the triangles of `tri` (all triangles, CCW, boundary groups kept) into quads; `M`: one
 /// 2x2 frame matrix per triangle (M^T M the metric; an empty vector: the identity, i.e. physical

@@ -1,6 +1,8 @@
 #include "quad/recombine.hpp"
 
 #include "core/error.hpp"
+#include "mesh/label.hpp"
+#include "mesh/validate.hpp"
 #include "quad/mesh_utils.hpp"
 #include "quad/subdivide.hpp"
 
@@ -23,9 +25,17 @@ Mesh recombine_to_all_quads(const Mesh& tri_in, const RecombineOptions& opt, Rec
   Mesh out = opt.split ? split_to_all_quads(qd) : std::move(qd);
   st.quality = quality_summary(out);
   st.cells_out = out.num_cells();
-  if (st.quality.inverted > 0)
-    throw NumericalError(path + ": the all-quad mesh has " + std::to_string(st.quality.inverted) +
-                         " inverted or degenerate cells");
+  // never a mesh that the tools reading it refuse (validate_mesh's test of each cell)
+  int bad = 0, first_bad = -1;
+  std::string first_problem;
+  for (int c = 0; c < out.num_cells(); ++c)
+    if (std::string problem = cell_shape_problem(out, c); !problem.empty() && bad++ == 0) {
+      first_bad = c;
+      first_problem = std::move(problem);
+    }
+  if (bad > 0)
+    throw NumericalError(path + ": the all-quad mesh has " + std::to_string(bad) + " inverted or degenerate cells (" +
+                         cell_label(out, first_bad) + " is " + first_problem + ")");
   if (stats) *stats = st;
   return out;
 }
