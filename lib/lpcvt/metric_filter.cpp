@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 
@@ -85,6 +86,24 @@ double max_neighbour_size_ratio(const Background& bg) {
     for (int n : nb[c]) worst = std::max(worst, mean_size(bg.mesh_cell_metric(n)) / hc);
   }
   return worst;
+}
+
+double metric_spread(const Background& bg) {
+  const int n = bg.num_cells();
+  std::vector<Sym> L(n);
+  Sym mean = Sym::Zero();
+  double area = 0;
+  for (int c = 0; c < n; ++c) {
+    const IntegrationCell& q = bg.cell(c);
+    L[c] = sym_log(q.M.transpose() * q.M);
+    mean += q.area * L[c];
+    area += q.area;
+  }
+  if (!(area > 0)) return 0;
+  mean /= area;
+  double spread = 0;
+  for (int c = 0; c < n; ++c) spread = std::max(spread, (L[c] - mean).norm());
+  return spread;
 }
 
 FilterReport smooth_metric(Background& bg, int passes) {

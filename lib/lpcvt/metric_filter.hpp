@@ -40,6 +40,14 @@ struct FilterReport {
   double max_ratio_before = 0, max_ratio_after = 0;  ///< largest neighbour size ratio
 };
 
+/// How far the metric is from constant: max over the integration cells c of
+/// || log 𝓜_c − L̄ ||_F, 𝓜_c = M_cᵀ M_c (so reflections and the frame's turn inside an isotropic
+/// 𝓜 do not count), L̄ the area-weighted mean of log 𝓜 (Arsigny's log-Euclidean mean). Natural
+/// log units: 0 for a constant frame (to rounding); a size ratio s between two cells counts
+/// 2 ln s between them, a 10:1 frame turned by θ about 2 ln(10) sin θ. Analytic backgrounds: at
+/// the cells' centroids.
+double metric_spread(const Background& bg);
+
 /// Log-Euclidean smoothing, `passes` Jacobi passes (above).
 FilterReport smooth_metric(Background& bg, int passes);
 

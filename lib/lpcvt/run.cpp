@@ -258,7 +258,9 @@ void check_point_budget(const Background& bg, const LpcvtJob& job, const std::st
                                "and --scale, or raise --max-points");
 }
 
-int auto_phases(const Background& bg) { return bg.metric_area() <= kAutoPhasePoints ? kAutoPhases : 1; }
+int auto_phases(const Background& bg) {
+  return bg.metric_area() <= kAutoPhasePoints && metric_spread(bg) <= kAutoPhaseSpread ? kAutoPhases : 1;
+}
 
 LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann::json& rep,
                             const std::function<void(const std::string&)>& log) {
@@ -269,6 +271,7 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
   const bool lattice = opt.seed_mode == SeedMode::Lattice && !opt.multilevel && !bg.is_analytic();
   const int phases = !lattice ? 1 : job.phases > 0 ? job.phases : auto_phases(bg);
   rep["options"]["phases"] = phases;
+  if (lattice && job.phases <= 0) rep["metric_spread"] = metric_spread(bg);  // what auto decided on
   // the effective start and preconditioning (their defaults differ between frames and --analytic)
   rep["options"]["init"] = opt.multilevel ? "multilevel"
                            : opt.seed_mode == SeedMode::Lattice ? "lattice"

@@ -9,6 +9,7 @@
 
 #include "helpers.hpp"
 #include "lpcvt/lattice.hpp"
+#include "lpcvt/metric_filter.hpp"
 #include "lpcvt/phases.hpp"
 #include "lpcvt/run.hpp"
 
@@ -91,14 +92,47 @@ TEST_CASE("phases: the lattice start is translated by M^-1 phase") {
   (void)frac;
 }
 
-TEST_CASE("phases: auto runs kAutoPhases phases up to kAutoPhasePoints points, one above") {
+TEST_CASE("phases: auto runs kAutoPhases phases on a constant frame up to kAutoPhasePoints points, one above") {
   Mesh m = quadapt::make_structured_quads(4, 4, 0, 1, 0, 1);
   set_frame(m, 0.05, 0.05, 0);  // metric area 1 / 0.05^2 = 400
   const Background small = Background::from_frame(m, 1.0, "test");
   CHECK(small.metric_area() == doctest::Approx(400));
+  CHECK(metric_spread(small) < 1e-12);
   CHECK(auto_phases(small) == kAutoPhases);
   CHECK(auto_phases(small.scaled(std::sqrt(kAutoPhasePoints / 400) * 1.01)) == 1);
   CHECK(auto_phases(small.scaled(std::sqrt(kAutoPhasePoints / 400) * 0.99)) == kAutoPhases);
+}
+
+TEST_CASE("phases: auto runs one phase on a graded frame (metric_spread above kAutoPhaseSpread)") {
+  // a turned, reflected constant frame is constant: its 𝓜 = MᵀM does not see the reflection
+  Mesh m = quadapt::make_structured_quads(4, 4, 0, 1, 0, 1);
+  set_frame(m, 0.06, 0.015, 0.7);
+  auto& f = m.cell_fields[0];
+  for (int c = 0; c < m.num_cells(); c += 2)
+    for (int k : {0, 1}) f(c, k) = -f(c, k);  // every other cell reflected (det M < 0)
+  CHECK(metric_spread(Background::from_frame(m, 1.0, "test")) < 1e-12);
+  CHECK(auto_phases(Background::from_frame(m, 1.0, "test")) == kAutoPhases);
+  // sizes h in the left half, s h in the right half: log 𝓜 = -2 ln h I and -2 ln(s h) I, the mean
+  // halfway, so the spread is ln s |I|_F = sqrt(2) ln s
+  for (double s : {1.05, 1.2, 2.0}) {
+    set_frame(m, 0.05, 0.05, 0);
+    for (int c = 0; c < m.num_cells(); ++c)
+      if (quadapt::cell_centroid(m, c).x() > 0.5)
+        for (int k : {0, 4}) f(c, k) /= s;
+    const Background bg = Background::from_frame(m, 1.0, "test");
+    CHECK(metric_spread(bg) == doctest::Approx(std::sqrt(2.0) * std::log(s)).epsilon(1e-12));
+    CHECK(auto_phases(bg) == (std::sqrt(2.0) * std::log(s) <= kAutoPhaseSpread ? kAutoPhases : 1));
+  }
+  // a 4:1 frame turned by 10 degrees in the right half: graded, one phase
+  set_frame(m, 0.06, 0.015, 0);
+  Mesh turned = m;
+  set_frame(turned, 0.06, 0.015, 10 * kPi / 180);
+  for (int c = 0; c < m.num_cells(); ++c)
+    if (quadapt::cell_centroid(m, c).x() > 0.5)
+      for (int k = 0; k < 9; ++k) f(c, k) = turned.cell_fields[0](c, k);
+  const Background bg = Background::from_frame(m, 1.0, "test");
+  CHECK(metric_spread(bg) > kAutoPhaseSpread);
+  CHECK(auto_phases(bg) == 1);
 }
 
 TEST_CASE("phases: run two at a time on two threads, the caller's thread count is kept, the same run as on one") {
