@@ -33,6 +33,44 @@ CellLocator::CellLocator(const Mesh& m) : m_(m) {
     for (int j = by(a.y()); j <= by(b.y()); ++j)
       for (int i = bx(a.x()); i <= bx(b.x()); ++i) buckets_[static_cast<size_t>(j) * nx_ + i].push_back(c);
   }
+  // crowded buckets: a sub-grid each (cells pushed in ascending order, so each list is sorted)
+  bucket_sub_.assign(buckets_.size(), -1);
+  for (size_t bk = 0; bk < buckets_.size(); ++bk) {
+    const std::vector<int>& list = buckets_[bk];
+    if (static_cast<int>(list.size()) <= kCrowded) continue;
+    const int n = std::min(64, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(list.size())))));
+    const Vec2 blo = lo_ + Vec2((bk % nx_) * cell_size_.x(), (bk / nx_) * cell_size_.y());
+    const Vec2 sub_size = cell_size_ / n;
+    bucket_sub_[bk] = static_cast<int>(subs_.size());
+    subs_.push_back({n, sub_.size()});
+    sub_.resize(sub_.size() + static_cast<size_t>(n) * n);
+    for (int c : list) {
+      const Cell& cell = m.cells[c];
+      Vec2 a = m.nodes[cell.v[0]], b = a;
+      for (int i = 1; i < cell.nv; ++i) {
+        a = a.cwiseMin(m.nodes[cell.v[i]]);
+        b = b.cwiseMax(m.nodes[cell.v[i]]);
+      }
+      const int i0 = sub_index(n, blo.x(), sub_size.x(), a.x()), i1 = sub_index(n, blo.x(), sub_size.x(), b.x());
+      const int j0 = sub_index(n, blo.y(), sub_size.y(), a.y()), j1 = sub_index(n, blo.y(), sub_size.y(), b.y());
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) sub_[subs_.back().first + static_cast<size_t>(j) * n + i].push_back(c);
+    }
+  }
+}
+
+int CellLocator::sub_index(int n, double lo, double size, double x) const {
+  return std::clamp(static_cast<int>(std::floor((x - lo) / size)), 0, n - 1);
+}
+
+const std::vector<int>& CellLocator::candidates(size_t b, const Vec2& x) const {
+  const int s = bucket_sub_[b];
+  if (s < 0) return buckets_[b];
+  const Sub& sub = subs_[s];
+  const Vec2 blo = lo_ + Vec2((b % nx_) * cell_size_.x(), (b / nx_) * cell_size_.y());
+  const Vec2 sub_size = cell_size_ / sub.n;
+  const int i = sub_index(sub.n, blo.x(), sub_size.x(), x.x()), j = sub_index(sub.n, blo.y(), sub_size.y(), x.y());
+  return sub_[sub.first + static_cast<size_t>(j) * sub.n + i];
 }
 
 int CellLocator::bx(double x) const { return std::clamp(static_cast<int>(std::floor((x - lo_.x()) / cell_size_.x())), 0, nx_ - 1); }
@@ -67,7 +105,7 @@ int CellLocator::locate(const Vec2& x) const {
   if (m_.cells.empty()) return -1;
   const double fx = (x.x() - lo_.x()) / cell_size_.x(), fy = (x.y() - lo_.y()) / cell_size_.y();
   if (fx < -1e-9 || fy < -1e-9 || fx > nx_ + 1e-9 || fy > ny_ + 1e-9) return -1;
-  for (int c : buckets_[static_cast<size_t>(by(x.y())) * nx_ + bx(x.x())])
+  for (int c : candidates(static_cast<size_t>(by(x.y())) * nx_ + bx(x.x()), x))
     if (inside(c, x)) return c;
   return -1;
 }

@@ -1,6 +1,11 @@
 #pragma once
 // Point location in a 2D mesh by a uniform grid of buckets over the cells' bounding boxes
 // (about one cell per bucket). Exact point-in-polygon test on the straight-sided cells.
+// A graded mesh piles many small cells into few buckets (a boundary layer's thin cells: hundreds
+// per bucket): a bucket listing more than kCrowded cells gets its own n x n grid of sub-buckets
+// (n = ceil(sqrt(count)), capped at 64), each listing, in ascending order, the bucket's cells
+// whose bounding box meets it. The answer is the same cell as without the sub-grid (the first
+// cell, by index, of x's bucket that contains x: every such cell's box meets x's sub-bucket).
 #include <vector>
 
 #include "mesh/mesh.hpp"
@@ -20,6 +25,17 @@ class CellLocator {
   Vec2 lo_, cell_size_;
   int nx_ = 1, ny_ = 1;
   std::vector<std::vector<int>> buckets_;
+  static constexpr int kCrowded = 16;
+  struct Sub {
+    int n = 0;       ///< n x n sub-buckets over the bucket's box
+    size_t first = 0;  ///< its first sub-bucket in sub_
+  };
+  std::vector<int> bucket_sub_;  ///< per bucket: index into subs_, or -1
+  std::vector<Sub> subs_;
+  std::vector<std::vector<int>> sub_;
+  /// The cells to test for x in bucket b (its sub-bucket's when it has a sub-grid).
+  const std::vector<int>& candidates(size_t b, const Vec2& x) const;
+  int sub_index(int n, double lo, double size, double x) const;
   bool inside(int c, const Vec2& x) const;
   double distance(int c, const Vec2& x) const;
   int bx(double x) const;
