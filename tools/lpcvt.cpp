@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()->check(CLI::Range(0.0, 10.0));
   app.add_option("--phases", job.phases, "Lattice start: run from this many lattice phases (translations of the "
                  "lattice against walls oblique to the frame) and keep the one whose recombined mesh has the fewest "
-                 "irregular interior vertices (docs/lpcvt.md, Method 11); 1 = one run; 0 = auto: 4 when the frame is constant "
+                 "irregular interior vertices (docs/lpcvt.md, Method 11); 1 = one run; 0 = auto: 6 when the frame is constant "
                  "(the report's metric_spread <= 0.1) and asks for at most 4000 points, else 1 (on a graded frame the "
                  "rows bend and the phases are a lottery that costs 3.6x the time)")
       ->capture_default_str()->check(CLI::Range(0, 16));

@@ -92,8 +92,10 @@ Background saddle_background(int grid, bool sampled, const LpcvtJob& job, nlohma
 /// phases are four draws of the same lottery: on the study loops' 300 frames the best of four
 /// had 0.0687 of the interior vertices irregular against 0.0754 for one phase (0.0755 for the
 /// phase chosen after 20 iterations: the outcome is decided late), at 3.6x lpcvt's time, and no
-/// loop error we can tell apart (docs/studies.md).
-constexpr int kAutoPhases = 4;
+/// loop error we can tell apart (docs/studies.md). Six phases, not four, since the loops stopped
+/// paying for them: on the 432 constant-frame chains of docs/quad-quality.md six miss none of
+/// issue #14's item 1 targets, four miss two (irregular 3.07 %, 3.09 %).
+constexpr int kAutoPhases = 6;
 constexpr double kAutoPhasePoints = 4000;
 constexpr double kAutoPhaseSpread = 0.1;
 int auto_phases(const Background& bg);

@@ -6,7 +6,8 @@
 #   - the output is byte-identical to a one-phase run at the kept phase (--lattice-phase) and to
 #     the run with two threads (the phases then run two at a time), and
 #     recombine on it gives exactly the irregular count the report states;
-#   - the default (auto) on this small frame is 4 phases; --phases 1 is phase 0's run;
+#   - the default (auto) on this small constant frame is 6 phases (the --phases 6 run), on a graded
+#     frame (the curved band) one run; --phases 1 is phase 0's run;
 #   - on a frame aligned with the walls every phase has the same start: one run, three skipped;
 #   - --lattice-phase with --phases > 1, or out of [0, 1), is refused with one line.
 set -euo pipefail
@@ -25,6 +26,7 @@ frame f0 0
 lpcvt -q "$T/f45.msh" -o "$T/k4.msh" --phases 4
 lpcvt -q "$T/f45.msh" -o "$T/k4-t2.msh" --phases 4 --threads 2   # phases two at a time
 lpcvt -q "$T/f45.msh" -o "$T/auto.msh"
+lpcvt -q "$T/f45.msh" -o "$T/k6.msh" --phases 6
 lpcvt -q "$T/f45.msh" -o "$T/one.msh" --phases 1
 lpcvt -q "$T/f45.msh" -o "$T/zero.msh" --lattice-phase 0 0
 KEPT=$($PY - "$T" <<'PY'
@@ -39,7 +41,8 @@ assert kept == best, (kept, best, runs)
 # the phases differ: a selection that cannot choose would not be a test
 assert len({(e["irregular"], round(e["pair_quality"], 9)) for e in runs}) > 1, runs
 a = json.load(open(f"{T}/auto.json"))
-assert a["options"]["phases"] == 4 and a["phase"] == kept, (a["options"], a.get("phase"))
+assert a["options"]["phases"] == 6 and a["phase"] == json.load(open(f"{T}/k6.json"))["phase"], (a["options"], a.get("phase"))
+assert a["metric_spread"] < 1e-9, a["metric_spread"]  # a constant frame
 assert json.load(open(f"{T}/one.json"))["options"]["phases"] == 1
 print(*runs[kept]["phase"], runs[kept]["irregular"])
 PY
@@ -48,11 +51,22 @@ read -r PX PY_ IRR <<< "$KEPT"
 lpcvt -q "$T/f45.msh" -o "$T/kept.msh" --lattice-phase "$PX" "$PY_"
 same_bytes "$T/k4.msh" "$T/kept.msh"    # --phases 4's output is the run at its kept phase
 same_bytes "$T/k4.msh" "$T/k4-t2.msh"   # the same for any thread count
-same_bytes "$T/k4.msh" "$T/auto.msh"    # the default (auto) is the 4-phase run on a small frame
+same_bytes "$T/k6.msh" "$T/auto.msh"    # the default (auto) is the 6-phase run on a small constant frame
 same_bytes "$T/one.msh" "$T/zero.msh"   # --phases 1 is phase (0, 0)
 recombine -q "$T/k4.msh" -o "$T/k4-quad.msh"
 GOT=$(meshquality "$T/k4-quad.msh" | $PY -c "import json, sys; print(json.load(sys.stdin)['irregular_interior_vertices'])")
 [ "$GOT" = "$IRR" ] || fail "recombine gives $GOT irregular interior vertices, the report says $IRR"
+
+# a graded frame (the curved band): auto runs one phase, the run of --phases 1
+$PY "$S/tests/cli/lpcvt_frame.py" "$T/band.msh" --n 16 --kind band --h1 0.05
+lpcvt -q "$T/band.msh" -o "$T/band-auto.msh"
+lpcvt -q "$T/band.msh" -o "$T/band-one.msh" --phases 1
+$PY - "$T/band-auto.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["options"]["phases"] == 1 and "phases" not in r and r["metric_spread"] > 0.1, (r["options"], r.get("metric_spread"))
+PY
+same_bytes "$T/band-auto.msh" "$T/band-one.msh"
 
 # walls along the frame register both axes: one run, the others skipped
 lpcvt -q "$T/f0.msh" -o "$T/f0.msh.out.msh" --phases 4
