@@ -258,9 +258,11 @@ void check_point_budget(const Background& bg, const LpcvtJob& job, const std::st
                                "and --scale, or raise --max-points");
 }
 
-int auto_phases(const Background& bg) {
-  return bg.metric_area() <= kAutoPhasePoints && metric_spread(bg) <= kAutoPhaseSpread ? kAutoPhases : 1;
+int auto_phases(double metric_area, double spread) {
+  return metric_area <= kAutoPhasePoints && spread <= kAutoPhaseSpread ? kAutoPhases : 1;
 }
+
+int auto_phases(const Background& bg) { return auto_phases(bg.metric_area(), metric_spread(bg)); }
 
 LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann::json& rep,
                             const std::function<void(const std::string&)>& log) {
@@ -269,9 +271,11 @@ LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann:
   if (!(opt.split.lmin >= 0 && opt.split.lmax > opt.split.lmin)) throw InputError("", "need 0 <= --lmin < --lmax");
   rep["options"]["weight"] = opt.lbfgs.gamma;
   const bool lattice = opt.seed_mode == SeedMode::Lattice && !opt.multilevel && !bg.is_analytic();
-  const int phases = !lattice ? 1 : job.phases > 0 ? job.phases : auto_phases(bg);
+  const bool automatic = lattice && job.phases <= 0;
+  const double spread = automatic ? metric_spread(bg) : 0;
+  const int phases = !lattice ? 1 : automatic ? auto_phases(bg.metric_area(), spread) : job.phases;
   rep["options"]["phases"] = phases;
-  if (lattice && job.phases <= 0) rep["metric_spread"] = metric_spread(bg);  // what auto decided on
+  if (automatic) rep["metric_spread"] = spread;  // what auto decided on
   // the effective start and preconditioning (their defaults differ between frames and --analytic)
   rep["options"]["init"] = opt.multilevel ? "multilevel"
                            : opt.seed_mode == SeedMode::Lattice ? "lattice"

@@ -99,6 +99,8 @@ constexpr int kAutoPhases = 6;
 constexpr double kAutoPhasePoints = 4000;
 constexpr double kAutoPhaseSpread = 0.1;
 int auto_phases(const Background& bg);
+/// The same rule from the background's metric area and metric_spread, when the caller has them.
+int auto_phases(double metric_area, double spread);
 
 /// run_lpcvt (from job.phases lattice phases, keeping the best: lpcvt/phases.hpp), the check of
 /// the output triangulation (NumericalError when invalid), and the report figures (to_json,

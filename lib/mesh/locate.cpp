@@ -1,6 +1,7 @@
 #include "mesh/locate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace quadapt {
@@ -23,6 +24,7 @@ CellLocator::CellLocator(const Mesh& m) : m_(m) {
   ny_ = std::clamp(static_cast<int>(std::ceil(n / std::sqrt(aspect))), 1, 4096);
   cell_size_ = Vec2(ext.x() / nx_, ext.y() / ny_);
   buckets_.assign(static_cast<size_t>(nx_) * ny_, {});
+  std::vector<std::array<Vec2, 2>> box(m.num_cells());  // each cell's bounding box
   for (int c = 0; c < m.num_cells(); ++c) {
     const Cell& cell = m.cells[c];
     Vec2 a = m.nodes[cell.v[0]], b = a;
@@ -30,6 +32,7 @@ CellLocator::CellLocator(const Mesh& m) : m_(m) {
       a = a.cwiseMin(m.nodes[cell.v[i]]);
       b = b.cwiseMax(m.nodes[cell.v[i]]);
     }
+    box[c] = {a, b};
     for (int j = by(a.y()); j <= by(b.y()); ++j)
       for (int i = bx(a.x()); i <= bx(b.x()); ++i) buckets_[static_cast<size_t>(j) * nx_ + i].push_back(c);
   }
@@ -38,39 +41,32 @@ CellLocator::CellLocator(const Mesh& m) : m_(m) {
   for (size_t bk = 0; bk < buckets_.size(); ++bk) {
     const std::vector<int>& list = buckets_[bk];
     if (static_cast<int>(list.size()) <= kCrowded) continue;
-    const int n = std::min(64, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(list.size())))));
-    const Vec2 blo = lo_ + Vec2((bk % nx_) * cell_size_.x(), (bk / nx_) * cell_size_.y());
-    const Vec2 sub_size = cell_size_ / n;
+    Sub sub;
+    sub.n = std::min(64, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(list.size())))));
+    sub.first = sub_.size();
+    sub.lo = lo_ + Vec2((bk % nx_) * cell_size_.x(), (bk / nx_) * cell_size_.y());
+    sub.size = cell_size_ / sub.n;
     bucket_sub_[bk] = static_cast<int>(subs_.size());
-    subs_.push_back({n, sub_.size()});
-    sub_.resize(sub_.size() + static_cast<size_t>(n) * n);
+    subs_.push_back(sub);
+    sub_.resize(sub_.size() + static_cast<size_t>(sub.n) * sub.n);
     for (int c : list) {
-      const Cell& cell = m.cells[c];
-      Vec2 a = m.nodes[cell.v[0]], b = a;
-      for (int i = 1; i < cell.nv; ++i) {
-        a = a.cwiseMin(m.nodes[cell.v[i]]);
-        b = b.cwiseMax(m.nodes[cell.v[i]]);
-      }
-      const int i0 = sub_index(n, blo.x(), sub_size.x(), a.x()), i1 = sub_index(n, blo.x(), sub_size.x(), b.x());
-      const int j0 = sub_index(n, blo.y(), sub_size.y(), a.y()), j1 = sub_index(n, blo.y(), sub_size.y(), b.y());
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i) sub_[subs_.back().first + static_cast<size_t>(j) * n + i].push_back(c);
+      const auto& [a, b] = box[c];
+      for (int j = sub.index(a, 1); j <= sub.index(b, 1); ++j)
+        for (int i = sub.index(a, 0); i <= sub.index(b, 0); ++i)
+          sub_[sub.first + static_cast<size_t>(j) * sub.n + i].push_back(c);
     }
   }
 }
 
-int CellLocator::sub_index(int n, double lo, double size, double x) const {
-  return std::clamp(static_cast<int>(std::floor((x - lo) / size)), 0, n - 1);
+int CellLocator::Sub::index(const Vec2& x, int axis) const {
+  return std::clamp(static_cast<int>(std::floor((x[axis] - lo[axis]) / size[axis])), 0, n - 1);
 }
 
 const std::vector<int>& CellLocator::candidates(size_t b, const Vec2& x) const {
   const int s = bucket_sub_[b];
   if (s < 0) return buckets_[b];
   const Sub& sub = subs_[s];
-  const Vec2 blo = lo_ + Vec2((b % nx_) * cell_size_.x(), (b / nx_) * cell_size_.y());
-  const Vec2 sub_size = cell_size_ / sub.n;
-  const int i = sub_index(sub.n, blo.x(), sub_size.x(), x.x()), j = sub_index(sub.n, blo.y(), sub_size.y(), x.y());
-  return sub_[sub.first + static_cast<size_t>(j) * sub.n + i];
+  return sub_[sub.first + static_cast<size_t>(sub.index(x, 1)) * sub.n + sub.index(x, 0)];
 }
 
 int CellLocator::bx(double x) const { return std::clamp(static_cast<int>(std::floor((x - lo_.x()) / cell_size_.x())), 0, nx_ - 1); }

@@ -27,15 +27,16 @@ class CellLocator {
   std::vector<std::vector<int>> buckets_;
   static constexpr int kCrowded = 16;
   struct Sub {
-    int n = 0;       ///< n x n sub-buckets over the bucket's box
+    int n = 0;         ///< n x n sub-buckets over the bucket's box
     size_t first = 0;  ///< its first sub-bucket in sub_
+    Vec2 lo, size;     ///< the bucket's lower corner and a sub-bucket's size
+    int index(const Vec2& x, int axis) const;  ///< x's sub-bucket column (axis 0) or row (1), clamped
   };
   std::vector<int> bucket_sub_;  ///< per bucket: index into subs_, or -1
   std::vector<Sub> subs_;
   std::vector<std::vector<int>> sub_;
   /// The cells to test for x in bucket b (its sub-bucket's when it has a sub-grid).
   const std::vector<int>& candidates(size_t b, const Vec2& x) const;
-  int sub_index(int n, double lo, double size, double x) const;
   bool inside(int c, const Vec2& x) const;
   double distance(int c, const Vec2& x) const;
   int bx(double x) const;
