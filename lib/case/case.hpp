@@ -81,9 +81,11 @@ Case load_case(const std::string& path);
 /// file, the missing boundary and the mesh's boundary groups).
 void check_case_boundaries(const Case& cs, const Mesh& mesh);
 
-/// Checks that the exact solution, its gradient and the source term are finite at every node
-/// and cell centroid of `mesh` (e.g. log(x-2) on the unit square is not): InputError naming the
-/// case file, the expression and the point. dg_solve and compute_dwr call it first.
+/// Checks that the exact solution, its gradient and the source term are finite at every cell
+/// centroid and edge midpoint of `mesh` (e.g. log(x-2) on the unit square is not), and the
+/// boundary data at the midpoint and Gauss points of their edges: InputError naming the case
+/// file, the expression and the point. Not at the nodes, where the solver never evaluates: a
+/// corner singularity on a node is a valid case. dg_solve and compute_dwr call it first.
 void check_case_finite(const Case& cs, const Mesh& mesh);
 
 /// The exact solution with its derivatives and the source term, compiled for fast evaluation.
