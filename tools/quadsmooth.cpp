@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   app.add_option("QUAD", in, "Input quad mesh (.msh)")->required()->check(CLI::ExistingFile);
   app.add_option("-o,--output", out, "Output mesh (.msh); report beside it as .json")->required();
   app.add_option("--sweeps", sweeps,
-                 "Smoothing sweeps over the interior nodes (default: 3 for angle, at most 60 for shape)")
+                 "Smoothing sweeps over the interior nodes (default: 3 for angle, at most 30 for shape)")
       ->check(NonNegativeValue);
   app.add_option("--method", method,
                  "angle (Zhou & Shimada; the default without --frame) or shape (corner fit to the frame's "
@@ -55,6 +55,10 @@ int main(int argc, char** argv) {
   app.add_option("--halvings", opt.max_halvings, "Halvings of a rejected move before it is skipped")
       ->capture_default_str()
       ->check(NonNegativeValue);
+  app.add_option("--relaxation", shape.relaxation,
+                 "Shape fit: over-relaxation of each interior node's step (1 = plain Gauss-Seidel; in (0, 2); "
+                 "docs/quadsmooth.md, \"Over-relaxation\")")
+      ->capture_default_str();  // range: lib/cli/option_ranges.cpp
   double tolerance = -1;
   app.add_option("--tolerance", tolerance,
                  "Stop when no node moves more than this fraction of its mean edge length (default: 0 "
@@ -110,7 +114,10 @@ int main(int argc, char** argv) {
       if (method != "shape" && tool.app().count(o))
         throw InputError("", std::string(o) + " applies to the shape fit only (--method shape with --frame)");
     fit_opt.mode = lpcvt::parse_fit_frame(fit, in);
+    if (method != "shape" && tool.app().count("--relaxation"))
+      throw InputError("", "--relaxation applies to the shape fit only (--method shape with --frame)");
     if (method == "shape") {
+      tool.option("relaxation", shape.relaxation);
       tool.option("corner_metric", corner_metric);
       tool.option("walls", walls);
       tool.option("fit_frame", fit);

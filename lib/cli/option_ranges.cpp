@@ -63,6 +63,7 @@ const std::vector<OptionRange>& option_ranges() {
       {"lpcvt",          "--ramp-after",            0,     kInf,  false, false},
       {"lpcvt",          "--lattice-phase",         0,     1,     false, true},
       {"quadsmooth",     "--frame-gradation",       1,     kInf,  true,  false, true},
+      {"quadsmooth",     "--relaxation",            0,     2,     true,  true},
       {"size-solve",     "--growth",                0,     kInf,  true,  false},
       {"size-solve",     "--hmin",                  0,     kInf,  false, false},
       {"size-solve",     "--hmax",                  0,     kInf,  false, false},

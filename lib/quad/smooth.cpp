@@ -363,7 +363,7 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
       const double lambda = std::clamp(d.dot(rhs - A * xa) / dAd, kSlideMin, 1 - kSlideMin);
       step = xa + lambda * d - xi;
     } else {
-      step = A.inverse() * rhs - xi;
+      step = opt.relaxation * (A.inverse() * rhs - xi);
     }
     if (!(step.norm() > 0) || !std::isfinite(step.x()) || !std::isfinite(step.y())) return;
     const auto& cells = topo.node_cells[i];

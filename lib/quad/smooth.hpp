@@ -94,7 +94,13 @@ SmoothStats angle_smooth(Mesh& m, const SmoothOptions& opt = {}, const NodeMetri
 /// boundary nodes fixed except those that slide along a straight wall (slide_walls: the
 /// minimiser of the same fit on the wall's line, docs/quadsmooth.md "Walls").
 struct ShapeSmoothOptions {
-  int sweeps = 60;            ///< Gauss-Seidel passes at most
+  int sweeps = 30;            ///< Gauss-Seidel passes at most
+  /// Over-relaxation (SOR) of an interior node's step: it moves by relaxation times the step to
+  /// its fit's minimiser (then the guard below halves it if needed); 1 = plain Gauss-Seidel.
+  /// Wall nodes sliding along a wall take the plain step. In (0, 2). The fit is stopped at the
+  /// sweeps cap, not converged (the tolerance is rarely met), and 1.6 reaches in 25-30 sweeps
+  /// the figures that 1 reaches in 60 (docs/quadsmooth.md, "Over-relaxation").
+  double relaxation = 1.6;
   /// a node is visited again only while a node of its cells moved more than this times its mean
   /// edge length in the sweep before; stop when none did
   double tolerance = 1e-3;
