@@ -21,12 +21,12 @@ done
 printf '{"exact": "1/(x-0.5)", "diffusion": [[1, 0], [0, 1]]}\n' > line.json
 expect_exit 2 "line.json: the exact solution of '1/(x-0.5)' is not finite at (5.000e-01, " dgsolve -q m.msh -c line.json -p 1 -o d.msh
 # ... an isolated singular point on a node is not: the L-shape's corner singularity
+# (examples/cases/lshape-corner.json)
 # r^(2/3) sin(2 theta / 3) at the re-entrant corner (0.5, 0.5), where the written expression is
 # 0 * NaN (atan of 0/0) and its gradient infinite; the solver never evaluates at a node (it was
 # refused: "not finite at (5.000e-01, 5.000e-01) (a point of the mesh)"). Solved on two uniform
 # refinements, its L2 error falls at the singularity's rate h^(4/3) (measured 1.40, 1.37).
-R='sqrt((x-0.5)^2+(y-0.5)^2)'
-printf '{"exact": "pow(%s, 2/3)*sin(2*(2*atan((((x-0.5)-(y-0.5))/sqrt(2))/(%s+(-((x-0.5)+(y-0.5))/sqrt(2)))) + 3*pi/4)/3)", "diffusion": [[1, 0], [0, 1]], "dirichlet": "all"}\n' "$R" "$R" > corner.json
+cp "$E/cases/lshape-corner.json" corner.json
 cp "$E/meshes/l_shape.msh" l1.msh
 refine -q l1.msh --uniform -o l2.msh
 refine -q l2.msh --uniform -o l3.msh
