@@ -181,6 +181,32 @@ std::pair<double, double> metric_shape(const Mesh& m, const Mat2& T) {
     }
   return {dev / corners, in_band / edges};
 }
+// The metric T that maps each 1/8 x 1/12 cell of the unit square to a unit square turned by 30
+// degrees, that 8 x 12 grid (the shape fit's exact minimiser in T) and its fixed nodes.
+struct TurnedGrid {
+  Mat2 T;
+  Mesh grid = make_structured_quads(8, 12);
+  std::vector<char> fixed = boundary_node_flags(grid);
+  TurnedGrid() {
+    const double a = M_PI / 6;
+    Mat2 R;
+    R << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+    T = R * Eigen::Vector2d(8, 12).asDiagonal();
+  }
+};
+/// A fixed linear congruential sequence in [-0.5, 0.5] (the same numbers on every platform).
+struct Lcg {
+  unsigned s;
+  double operator()() { s = s * 1103515245u + 12345u; return ((s >> 8) & 0xffff) / 65535.0 - 0.5; }
+};
+/// The grid's interior nodes moved by up to 30 % of a cell (seed 11).
+Mesh perturbed_interior(const TurnedGrid& g) {
+  Lcg rnd{11};
+  Mesh pert = g.grid;
+  for (int v = 0; v < pert.num_nodes(); ++v)
+    if (!g.fixed[v]) pert.nodes[v] += Vec2(0.6 * rnd() / 8, 0.6 * rnd() / 12);
+  return pert;
+}
 }  // namespace
 
 TEST_CASE("shape_smooth: a perturbed grid of the metric's unit squares is restored") {
@@ -188,17 +214,10 @@ TEST_CASE("shape_smooth: a perturbed grid of the metric's unit squares is restor
   // minimiser (every corner a unit square of the metric). Interior nodes perturbed by up to 30 %
   // of a cell; the fit restores the grid (angle_smooth, which only balances angles, does not:
   // its fixed points include every grid of parallel lines, the lengths are free).
-  const double a = M_PI / 6;
-  Mat2 R;
-  R << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
-  const Mat2 T = R * Eigen::Vector2d(8, 12).asDiagonal();
-  Mesh grid = make_structured_quads(8, 12);
-  const auto fixed = boundary_node_flags(grid);
-  unsigned s = 11;
-  auto rnd = [&]() { s = s * 1103515245u + 12345u; return ((s >> 8) & 0xffff) / 65535.0 - 0.5; };
-  Mesh pert = grid;
-  for (int v = 0; v < pert.num_nodes(); ++v)
-    if (!fixed[v]) pert.nodes[v] += Vec2(0.6 * rnd() / 8, 0.6 * rnd() / 12);
+  const TurnedGrid g;
+  const Mat2& T = g.T;
+  const Mesh& grid = g.grid;
+  const Mesh pert = perturbed_interior(g);
   Mesh m = pert, ang = pert;
   ShapeSmoothOptions opt;
   opt.sweeps = 2000;
@@ -226,17 +245,10 @@ TEST_CASE("shape_smooth: over-relaxation reaches the grid in fewer sweeps") {
   // plain step (relaxation 1) against the default over-relaxation: the sweeps to the tolerance
   // and the distance to the grid after 30 sweeps (the default cap). Fails when the relaxation
   // is not applied (both runs the same).
-  const double a = M_PI / 6;
-  Mat2 R;
-  R << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
-  const Mat2 T = R * Eigen::Vector2d(8, 12).asDiagonal();
-  const Mesh grid = make_structured_quads(8, 12);
-  const auto fixed = boundary_node_flags(grid);
-  unsigned s = 11;
-  auto rnd = [&]() { s = s * 1103515245u + 12345u; return ((s >> 8) & 0xffff) / 65535.0 - 0.5; };
-  Mesh pert = grid;
-  for (int v = 0; v < pert.num_nodes(); ++v)
-    if (!fixed[v]) pert.nodes[v] += Vec2(0.6 * rnd() / 8, 0.6 * rnd() / 12);
+  const TurnedGrid g;
+  const Mat2& T = g.T;
+  const Mesh& grid = g.grid;
+  const Mesh pert = perturbed_interior(g);
   auto run = [&](double relaxation, int sweeps, double tolerance, int& used) {
     Mesh m = pert;
     ShapeSmoothOptions opt;
@@ -373,14 +385,11 @@ TEST_CASE("shape_smooth: wall nodes displaced along their walls slide back to th
   // interior nodes perturbed and its wall nodes moved along their walls by up to 30 % of a cell.
   // With sliding walls the fit restores the grid; with fixed walls it cannot (the rows must end
   // where the wall nodes are).
-  const double a = M_PI / 6;
-  Mat2 R;
-  R << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
-  const Mat2 T = R * Eigen::Vector2d(8, 12).asDiagonal();
-  const Mesh grid = make_structured_quads(8, 12);
-  const auto fixed = boundary_node_flags(grid);
-  unsigned s = 7;
-  auto rnd = [&]() { s = s * 1103515245u + 12345u; return ((s >> 8) & 0xffff) / 65535.0 - 0.5; };
+  const TurnedGrid g;
+  const Mat2& T = g.T;
+  const Mesh& grid = g.grid;
+  const auto& fixed = g.fixed;
+  Lcg rnd{7};
   Mesh pert = grid;
   for (int v = 0; v < pert.num_nodes(); ++v) {
     Vec2& x = pert.nodes[v];
