@@ -48,13 +48,16 @@ expect_exit 2 "lpcvt: --degree: 0 is not in [1, 8] (see" lpcvt frame.msh -o x.ms
 expect_exit 2 "lpcvt: --cells-per-triangle: 0.5 is not in [1, 3] (see" lpcvt frame.msh -o x.msh --cells-per-triangle 0.5
 expect_exit 2 "recombine: --min-quality: -1 is not in [0, 0.99] (see" recombine m.msh -o x.msh --min-quality -1
 expect_exit 2 "quadsmooth: --frame-smooth: -1 is not in [0, 1000] (see" quadsmooth m.msh -o x.msh --frame-smooth -1
+expect_exit 2 "quadsmooth: --relaxation: 2 is not in (0, 2) (see" quadsmooth m.msh -o x.msh --relaxation 2
+expect_exit 2 "quadsmooth: --relaxation applies to the shape fit only" quadsmooth m.msh -o x.msh --relaxation 1.2
 expect_exit 2 "meshconvert: --jitter: -1 is not in [0, 0.45] (see" meshconvert m.msh -o x.msh --jitter -1
 expect_exit 2 "meshconvert: --order: 9 is not in [1, 6] (see" meshconvert m.msh -o x.msh --order 9
 # --help says the ranges enforced (quadsmooth said NONNEGATIVE, bamgquad NONNEGATIVE; lpcvt
 # --gradation, meshplot --width / --subsample, dgsolve --rtol / --penalty said none)
 for want in "quadsmooth|--frame-gradation FLOAT:0 or (1, inf)" "bamgquad|--gradation FLOAT:0 or [1.1, inf)" \
             "lpcvt|--gradation FLOAT:0 or (1, inf)" "lpcvt|--lattice-phase FLOAT:[0, 1)" "meshplot|--width INT:[16, 20000]" \
-            "meshplot|--subsample INT:[0, 64]" "dgsolve|--rtol FLOAT:(0, 1)" "dgsolve|--penalty FLOAT:(0, inf)"; do
+            "meshplot|--subsample INT:[0, 64]" "dgsolve|--rtol FLOAT:(0, 1)" "dgsolve|--penalty FLOAT:(0, inf)" \
+            "quadsmooth|--relaxation FLOAT:(0, 2)=1.6"; do
   h=$(${want%%|*} --help)
   case "$h" in *"${want#*|}"*) ;; *) fail "${want%%|*} --help lacks '${want#*|}'" ;; esac
 done
