@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""How many points change region between two lpcvt outputs of the same frame (docs/bench-lpcvt.md,
+"""How many points change region between two lpcvt outputs of the same frame (docs/bench-lpcvt-history.md,
 "Is the tail a density correction?").
 
 Points of each mesh binned on a B x B grid over the bounding box of REF; the share of points that

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Paired CPU times of two lpcvt builds on one frame (docs/bench-lpcvt.md, "Second pass"):
+# Paired CPU times of two lpcvt builds on one frame (docs/bench-lpcvt-history.md, "Second pass"):
 #   pair.sh BASE_BIN NEW_BIN FRAME REPS [lpcvt options...]
 # BASE and NEW alternate (A B A B ...), one thread each, under /usr/bin/time; prints CPU seconds
 # (user + sys) and their ratio per pair, and whether the last outputs are byte-identical.

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""lpcvt at scale against BAMG (issue #17; docs/bench-lpcvt.md, "At scale"). Not a test: run by hand.
+"""lpcvt at scale against BAMG (issue #17; docs/bench-lpcvt.md, "Current figures";
+docs/bench-lpcvt-history.md, "At scale"). Not a test: run by hand.
 
   scale_bench.py --bin BUILD/bin [--reps 3] [--sizes 4e5,4e6] [--threads 1,2] [--out results.json]
                  [--work DIR] [--big-reps 1]

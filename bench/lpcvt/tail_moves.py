@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Which points still move at the end of an lpcvt minimisation (docs/bench-lpcvt.md, "What the
-last iterations move"). Not a test.
+"""Which points still move at the end of an lpcvt minimisation (docs/bench-lpcvt-history.md,
+"What the last iterations move"). Not a test.
 
   lpcvt FRAME -o A.msh --max-iterations 70 --move-tol 0 --edge-tol 0
   lpcvt FRAME -o B.msh --max-iterations 80 --move-tol 0 --edge-tol 0

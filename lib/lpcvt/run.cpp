@@ -30,7 +30,7 @@ LpcvtOptions LpcvtOptions::for_frame() {
   o.lbfgs.move_tol = 0.05;
   o.lbfgs.edge_tol = 0.05;
   o.lbfgs.gamma = 1;
-  o.lbfgs.precondition = true;  // fewer iterations to a settled mesh (docs/bench-lpcvt.md)
+  o.lbfgs.precondition = true;  // fewer iterations to a settled mesh (docs/bench-lpcvt-history.md, "Second pass")
   o.boundary_norm = 0;          // = p: one wall point per lattice row (boundary_points.hpp)
   o.set_init("", false);
   return o;

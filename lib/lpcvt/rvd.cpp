@@ -332,8 +332,8 @@ int RestrictedVoronoi::pieces(int q, std::vector<RvdPiece>& out, RvdWorkspace& w
           grid = -1;
           // The site tree answers a search with the ellipse's axis-aligned box (box_excess
           // above): the grid pays from grid_min_sites *box* sites on (measured,
-          // docs/bench-lpcvt.md: 100:1 at 30 degrees on 16 x 16 cells, ~12 sites a cell, 0.40x
-          // the CPU, the same output)
+          // docs/bench-lpcvt-history.md, "The ratios at a395b21": 100:1 at 30 degrees on 16 x 16
+          // cells, ~12 sites a cell, 0.55x the CPU, the same output)
           if (Q.area * std::sqrt(G.determinant()) * box_excess >= grid_min_sites_ * 2 * R2 &&
               ws.grid.build(G, Q.v.data(), Q.nv, 4 * std::sqrt(R2), std::sqrt(2 * R2), *tree_, x, 1 << 20)) {
             grid = 1;
