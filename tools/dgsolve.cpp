@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
     auto start = std::chrono::steady_clock::now();
     tool.input(in);
     tool.input(case_path);
-    tool.output(out);
+    tool.output_mesh(out);
     opt.solver.kind = parse_linear_solver(solver);
     check_degree(opt.p, "degree -p");
 

@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
 
   return tool.run(argc, argv, [&] {
     tool.input(in);
-    tool.output(out);
+    tool.output_mesh(out);
     opt.patch = patch == "vertex" ? PatchKind::Vertex : PatchKind::Face;
     tool.option("field", opt.field);
     tool.option("q", opt.q);

@@ -143,9 +143,9 @@ int main(int argc, char** argv) {
     if (in.empty() == analytic.empty()) throw InputError("", "give either FRAME.msh or --analytic saddle");
     if (!in.empty()) tool.input(in);
     if (!geometry.empty()) tool.input(geometry);
-    tool.output(out);
+    tool.output_mesh(out);
     if (!voronoi_out.empty()) tool.output(voronoi_out);
-    if (!frame_out.empty()) tool.output(frame_out);
+    if (!frame_out.empty()) tool.output_mesh(frame_out);
     opt.exact_count = !no_exact;
     if (!lattice_phase.empty()) {
       if (app.count("--phases") && job.phases > 1) throw InputError("", "--lattice-phase gives one phase: it does not go with --phases > 1");

@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
 
   return tool.run(argc, argv, [&] {
     tool.input(in);
-    tool.output(out);
+    tool.output_mesh(out);
     if (method.empty()) method = frame_path.empty() ? "angle" : "shape";
     if (method == "shape" && frame_path.empty())
       throw InputError("", "--method shape needs --frame FRAME.msh (the squares are the frame's)");

@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
 
   return tool.run(argc, argv, [&] {
     tool.input(in);
-    tool.output(out);
+    tool.output_mesh(out);
     opt.split = !no_split;
     opt.blossom.gmsh_cleanup = !pairing;
     tool.option("mode", pairing ? "pairing" : "gmsh-cleanup");

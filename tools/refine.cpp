@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
   return tool.run(argc, argv, [&] {
     tool.input(in);
     if (!geometry.empty()) tool.input(geometry);
-    tool.output(out);
+    tool.output_mesh(out);
     std::unique_ptr<BoundaryGeometry> g;
     if (!geometry.empty()) {
       auto ph = tool.phase("geometry");

@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
   return tool.run(argc, argv, [&] {
     tool.input(in);
     if (!dwr.empty()) tool.input(dwr);
-    tool.output(out);
+    tool.output_mesh(out);
     if (complexity <= 0 && growth <= 0) throw InputError("", "give --complexity C > 0 or --growth G > 0");
     Mesh shape, dwrmesh;
     {

@@ -73,7 +73,7 @@ Tool::Tool(std::string name, std::string summary, std::string details)
   app_.set_version_flag("--version", version_text(name_));
   app_.add_option("--report", report_path_,
                   "JSON report path (default: beside the output, OUT.msh -> OUT.json; any other output name "
-                  "gets .json appended, e.g. sol.vtu -> sol.vtu.json, never over sol.json)");
+                  "gets .json appended, e.g. meshconvert's sol.vtu -> sol.vtu.json, never over sol.json)");
   app_.add_flag("-q,--quiet", quiet_, "No progress messages on stderr");
   app_.add_option("--threads", threads_,
                   "OpenMP threads (default: OMP_NUM_THREADS, else all cores; at most 4 x the cores)")
@@ -112,6 +112,17 @@ void Tool::output(const std::string& path) {
     report_explicit_ = !report_path_.empty();
     if (report_path_.empty() && target.kind == OutputTarget::Kind::Regular) report_path_ = default_report_path(path);
     declare_report();
+  }
+}
+
+void Tool::output_mesh(const std::string& path) {
+  output(path);  // its refusals first (an input, a missing folder, ...): they name the worse mistake
+  const std::filesystem::path p(path);
+  const std::string ext = p.extension().string();
+  if (path != "-" && !ext.empty() && ext != ".msh" && ext != ".MSH") {
+    const std::string stem = (p.parent_path() / p.stem()).string();
+    throw InputError(path, name_ + " writes Gmsh MSH only: name the output " + stem +
+                               ".msh (for ParaView or another format: meshconvert " + stem + ".msh -o " + path + ")");
   }
 }
 

@@ -56,6 +56,11 @@ class Tool {
   /// report path, default_report_path(OUTPUT) (none when OUTPUT is "-", a device or a FIFO).
   /// Call before writing.
   void output(const std::string& path);
+  /// The same for a Gmsh MSH output (every tool but meshconvert and meshplot writes MSH only):
+  /// also throws InputError when the name has an extension other than .msh (sol.vtu would get
+  /// MSH text that ParaView cannot read), naming meshconvert for the conversion. Names without
+  /// an extension, "-", devices and FIFOs are accepted.
+  void output_mesh(const std::string& path);
 
   /// The JSON report. Put computed figures at top level (e.g. report()["dofs"] = n);
   /// "tool", "version", "command", "options", "inputs", "outputs", "timings", "threads",

@@ -151,6 +151,22 @@ meshconvert -q sol.msh -o conv.msh
 # meshconvert picks the format by the extension: one it does not write is refused before any work
 expect_exit 2 "out.vtk" meshconvert sol.msh -o out.vtk
 [ ! -e out.vtk ] || fail "meshconvert wrote out.vtk"
+# a mesh tool's output named for another format (a user's sol.vtu got MSH text, exit 0, and
+# ParaView failed later): refused before any work, naming meshconvert; nothing written
+for args in "dgsolve plain.msh -c case.json -p 1 -o s.vtu" "estimate-frame sol.msh -o sh.vtu" \
+            "size-solve shape.msh --complexity 2000 -o f.vtk" "lpcvt frame.msh -o t.vtu" \
+            "lpcvt frame.msh -o t.msh --write-frame m.vtu" "recombine plain.msh -o r.png" \
+            "quadsmooth plain.msh -o q.vtu" "refine sol.msh -o r.vtu" \
+            "adjoint sol.msh -c case.json -o a.vtu" "bamgquad frame.msh -o b.vtu"; do
+  set -- $args
+  out=${@: -1}
+  expect_exit 2 "writes Gmsh MSH only" $args
+  case "$ERR" in *"meshconvert ${out%.*}.msh -o $out"*) ;; *) fail "no meshconvert hint: $args :: $ERR" ;; esac
+  for f in "$out" "${out%.*}.json" "${out}.json" t.msh; do [ ! -e "$f" ] || fail "$args wrote $f"; done
+done
+# a name without an extension is still a mesh output
+quadsmooth -q plain.msh -o noext
+meshconvert -q noext -o /dev/null --require quads
 # an output mesh's Gmsh options file (OUT.msh.opt) that is an input: refused before the solve
 # (was: the solve ran, out.msh was written, then exit 2)
 cp plain.msh out.msh.opt
