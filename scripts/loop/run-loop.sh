@@ -180,7 +180,8 @@ fi
 if [ "$PICTURES" = yes ] && ! command -v meshplot >/dev/null 2>&1; then
   echo "loop: note: meshplot not found; the run will have no mesh pictures" >&2
 fi
-[ "$CHECK_ONLY" = 1 ] && { echo "loop: inputs OK (tools: ${tools[*]})"; exit 0; }
+tools_dir="$(dirname "$(command -v dgsolve)")"
+[ "$CHECK_ONLY" = 1 ] && { echo "loop: inputs OK (tools: ${tools[*]} from $tools_dir)"; exit 0; }
 
 # OpenMP threads that wait sleep instead of spinning (docs/bench-dgsolve.md: with libgomp's
 # default the idle thread spins through the sequential ILU sweeps; 2.36 s instead of 1.28 s for
@@ -328,6 +329,7 @@ copy_into() {  # copy_into SRC DST: DST = a copy of SRC, atomically (the user's 
 }
 
 say "CASE=$(basename "$CASE") P=$P METHOD=$METHOD MODE=$MODE STEPS=$STEPS GROWTH=$GROWTH MAXDOFS=$MAXDOFS -> $OUT"
+say "tools: $tools_dir ($tools_id)"
 mkdir -p "$OUT/step-0"
 START="$MESH"
 if [ "$START_JITTER" != 0 ]; then
@@ -385,9 +387,13 @@ while :; do
   last=$k
   ctl table "$OUT" --last $k >/dev/null
   stop=no
-  [ $k -ge "$STEPS" ] && stop=yes
-  [ "$(ctl stop "$OUT" $k "$MAXDOFS" "$METHOD" "$GROWTH")" = stop ] && stop=yes
+  if [ $k -ge "$STEPS" ]; then
+    stop=yes; why="STEPS=$STEPS reached"
+  elif [ "$(ctl stop "$OUT" $k "$MAXDOFS" "$METHOD" "$GROWTH")" = stop ]; then
+    stop=yes; why="the DOF limit MAXDOFS=$MAXDOFS (this step's DOFs reach it, or the next step's would pass 1.25x it; docs/loop.md \"Stopping\")"
+  fi
   if [ $stop = yes ]; then
+    say "stopping after step-$k: $why"
     # goal mode: the adjoint on the final mesh too (its time and the error estimate for the table)
     if [ "$MODE" = goal ] && [ "$METHOD" != uniform ]; then
       run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"

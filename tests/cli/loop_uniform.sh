@@ -49,6 +49,17 @@ assert min(rate) > 3.5, "uniform refinement at p=1 should reduce the L2 error ~4
 assert float(rows[0]["t_refine"]) > 0 and rows[2]["t_refine"] == "", rows
 PYEOF
 
+# the loop names the tools it runs and why it stopped (a user could not tell a MAXDOFS stop from
+# a finished run, nor which build a typo'd BIN fell back to)
+grep -q "^\[.*\] tools: $BIN (quadapt " "$T/log1.txt" || { cat "$T/log1.txt"; fail "no tools line"; }
+grep -q "stopping after step-2: STEPS=2 reached" "$T/log1.txt" || { cat "$T/log1.txt"; fail "no STEPS stop line"; }
+"${MK[@]}" loop "${LOOP[@]}" OUT="$T/run-max" STEPS=5 MAXDOFS=100 > "$T/log-max.txt" 2>&1 || { cat "$T/log-max.txt"; fail "MAXDOFS loop failed"; }
+grep -q "stopping after step-0: the DOF limit MAXDOFS=100" "$T/log-max.txt" || { cat "$T/log-max.txt"; fail "no MAXDOFS stop line"; }
+[ ! -e "$T/run-max/step-1" ] || fail "MAXDOFS=100: step-1 was run"
+rc=0; make --no-print-directory -f "$SRC/Makefile.cases" loop "${LOOP[@]}" BIN="$T/no-such-bin" OUT="$T/run-typo" > "$T/log-typo.txt" 2>&1 || rc=$?
+[ $rc -ne 0 ] && grep -q "BIN=$T/no-such-bin: no dgsolve there" "$T/log-typo.txt" || { cat "$T/log-typo.txt"; fail "typo'd BIN accepted"; }
+[ ! -e "$T/run-typo" ] || fail "typo'd BIN: OUT created"
+
 # ---- 2. resume: delete the last step, rerun -> the same table (times aside); step 0 is not redone
 strip() { "$PY" -c "import csv,sys
 for r in csv.DictReader(open(sys.argv[1])): print({k: v for k, v in r.items() if not k.startswith('t_')})" "$1"; }
