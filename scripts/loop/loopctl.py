@@ -9,6 +9,9 @@
                                             (with an exact solution, and a functional when MODE is goal)
   loopctl.py params OUT/loop.json KEY=VAL.. write/compare the run's parameters (exit 1 on a
                                             mismatch, naming the differing keys)
+  loopctl.py case-sum CASE.json             the case's contents' sha256 (16 hex digits): its parsed
+                                            JSON without name and description, keys sorted, so that
+                                            re-indenting or re-describing the file keeps a run's identity
   loopctl.py table OUT [--last K]           assemble OUT/convergence.csv from the step reports
   loopctl.py stop OUT K MAXDOFS METHOD GROWTH   print 'stop' or 'go' (DOF limit rule, docs/loop.md)
   loopctl.py plot-title OUT                 the convergence plot's title: case (mode), p, method
@@ -140,9 +143,26 @@ PARAM_DEFAULTS = {"max_anisotropy": "25", "size_gradation": "0", "r_max": "20", 
                   "phases": "0", "walls": "slide", "fit_frame": "raw"}
 
 
+def cmd_case_sum(args):
+    import hashlib
+    with open(args[0], "rb") as f:
+        data = f.read()
+    try:
+        case = json.loads(data)
+    except ValueError:
+        case = None
+    if isinstance(case, dict):
+        case = {k: v for k, v in case.items() if k not in ("name", "description")}
+        data = json.dumps(case, sort_keys=True, separators=(",", ":")).encode()
+    print(hashlib.sha256(data).hexdigest()[:16])
+
+
 def cmd_params(args):
     path, pairs = args[0], args[1:]
     new = dict(p.split("=", 1) for p in pairs)
+    # runs made before case-sum hashed the case file's bytes: that hash, given as
+    # case_sha256_bytes, still identifies their case (not a parameter itself)
+    case_bytes = new.pop("case_sha256_bytes", None)
     old = load(path) if os.path.exists(path) else None
     if old is None:
         if "tools" in new:
@@ -154,6 +174,8 @@ def cmd_params(args):
     def same(k):
         a, b = old.get(k), new.get(k)
         if k == "case" and "case_sha256" in old:
+            return True
+        if k == "case_sha256" and case_bytes is not None and a == case_bytes:
             return True
         # an option the run left at its tool's default, now given as that default, or the reverse
         if k in PARAM_DEFAULTS:
@@ -299,7 +321,7 @@ def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     cmd, args = sys.argv[1], sys.argv[2:]
-    {"get": cmd_get, "summary": cmd_summary, "show": cmd_show, "check-case": cmd_check_case, "params": cmd_params, "table": cmd_table,
+    {"get": cmd_get, "summary": cmd_summary, "show": cmd_show, "check-case": cmd_check_case, "case-sum": cmd_case_sum, "params": cmd_params, "table": cmd_table,
      "stop": cmd_stop, "plot-title": cmd_plot_title, "thesis-key": cmd_thesis_key}.get(cmd, lambda a: sys.exit("loopctl: unknown command " + cmd))(args)
 
 

@@ -224,7 +224,10 @@ on_signal() {
 trap 'on_signal 130' INT
 trap 'on_signal 143' TERM
 trap 'on_signal 129' HUP
-case_sum="$(sha256sum "$CASE" | cut -c1-16)"
+# the case by its contents (re-indenting it or editing its description keeps the run's identity);
+# the bytes' hash for runs made before that
+case_sum="$(ctl case-sum "$CASE")"
+case_bytes="$(sha256sum "$CASE" | cut -c1-16)"
 mesh_sum="$(sha256sum "$MESH" | cut -c1-16)"
 # STEPS and MAXDOFS only say where to stop: a finished run can be continued with more steps.
 jit=()  # JITTER joins the run's parameters only when used (older runs have none)
@@ -242,7 +245,7 @@ case "$METHOD" in lpcvt|bamg) sgr=(${SIZE_GRADATION:+size_gradation="$SIZE_GRADA
 # the tools' provenance ("quadapt 0.1.0, commit SHA[ (dirty ...)]", as their reports give it):
 # recorded at the start; a resume with other tools is warned about, not refused (loopctl params)
 tools_id="$(dgsolve --version 2>/dev/null | awk 'NR == 1 {v = $NF} NR == 2 {sub(/^commit /, ""); c = $0} END {print "quadapt " v ", commit " c}')"
-msg="$(ctl params "$OUT/loop.json" tools="$tools_id" case="$CASE" case_sha256="$case_sum" mesh_sha256="$mesh_sum" p="$P" \
+msg="$(ctl params "$OUT/loop.json" tools="$tools_id" case="$CASE" case_sha256="$case_sum" case_sha256_bytes="$case_bytes" mesh_sha256="$mesh_sum" p="$P" \
   method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" ${jit[@]+"${jit[@]}"} \
   smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} \
   ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} ${phs[@]+"${phs[@]}"} ${wls[@]+"${wls[@]}"} ${rcm[@]+"${rcm[@]}"} \

@@ -75,6 +75,20 @@ grep -q "step-0: dgsolve" "$T/log2.txt" && fail "step 0's dgsolve ran again"
 # the same OUT with other parameters is refused
 rc=0; "${MK[@]}" loop "${LOOP[@]}" P=2 > "$T/log3.txt" 2>&1 || rc=$?
 [ $rc -ne 0 ] && grep -q "other parameters" "$T/log3.txt" || { cat "$T/log3.txt"; fail "parameter guard"; }
+# the case re-indented, its keys reordered, a description added: the same case, nothing recomputed
+# (was: refused, "case_sha256: was …, now …" — the file's bytes were hashed); another value: refused
+"$PY" - "$T/smooth.json" "$T/smooth2.json" <<'PYEOF'
+import json, sys
+c = json.load(open(sys.argv[1]))
+c = dict(reversed(list(c.items())), description="the same problem, re-saved")
+open(sys.argv[2], "w").write(json.dumps(c, indent=4) + "\n")
+PYEOF
+"${MK[@]}" loop "${LOOP[@]}" CASE="$T/smooth2.json" > "$T/log3b.txt" 2>&1 || { cat "$T/log3b.txt"; fail "re-saved case refused"; }
+grep -q "dgsolve" "$T/log3b.txt" && { cat "$T/log3b.txt"; fail "re-saved case: a step was recomputed"; }
+sed 's/"advection": \[1, 0.5\]/"advection": [1, 0.25]/' "$T/smooth.json" > "$T/smooth3.json"
+cmp -s "$T/smooth.json" "$T/smooth3.json" && fail "test setup: advection not changed"
+rc=0; "${MK[@]}" loop "${LOOP[@]}" CASE="$T/smooth3.json" > "$T/log3c.txt" 2>&1 || rc=$?
+[ $rc -ne 0 ] && grep -q "case_sha256" "$T/log3c.txt" || { cat "$T/log3c.txt"; fail "changed case accepted"; }
 
 # ---- 3. bad input: a clear message and no run directory
 bad() {  # bad PATTERN VAR=VALUE...
