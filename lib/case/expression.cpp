@@ -282,6 +282,7 @@ class Parser {
            " (variables x, y; constants pi, e; functions sin cos tan exp log sqrt tanh sinh cosh atan abs pow)");
     }
     if (t.kind == Token::End) fail(t, "expression ends unexpectedly");
+    if (t.text == "*") fail(t, "unexpected token", " (powers are written x^2 or pow(x, 2), not x**2)");
     fail(t, "unexpected token");
   }
 };

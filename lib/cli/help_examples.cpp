@@ -16,7 +16,7 @@ std::string help_example(const std::string& name) {
       {"size-solve",
        {"size-solve shape.msh --growth 1.5 -o frame.msh", "frame Vinv for 1.5x the solution's DOFs in frame.msh"}},
       {"lpcvt", {"lpcvt frame.msh -o tri.msh --seed 1", "triangles conforming to the frame in tri.msh"}},
-      {"recombine", {"recombine tri.msh -o quad.msh", "Blossom-Quad + split: the all-quad quad.msh"}},
+      {"recombine", {"recombine tri.msh -o quad.msh", "the all-quad quad.msh: metric matching when tri.msh carries a frame (lpcvt's output), else Blossom-Quad; then the split"}},
       {"quadsmooth", {"quadsmooth quad.msh -o mesh.msh", "angle-based smoothing: mesh.msh, ready for dgsolve"}},
       {"bamgquad", {"bamgquad frame.msh -o quad.msh", "BAMG + Blossom-Quad + split: the all-quad quad.msh"}},
       {"refine",

@@ -94,7 +94,7 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
     int c = 0;
     while (m.cells[c].nv != 3) ++c;
     fail(cell_label(m, c) + " is a triangle, but quadrilaterals are required (" + std::to_string(ntri) + " triangles, " +
-         std::to_string(nquad) + " quadrilaterals)");
+         std::to_string(nquad) + " quadrilaterals; in Gmsh: Recombine Surface, or recombine TRI.msh -o QUAD.msh)");
   }
   if (opt.require == CellKind::Triangles && nquad > 0) {
     int c = 0;

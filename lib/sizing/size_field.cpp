@@ -30,6 +30,7 @@ const std::vector<double>* scalar_field(const Mesh& m, const std::string& name, 
     if (!required) return nullptr;
     std::string have;
     for (const auto& g : m.cell_fields) have += (have.empty() ? "" : ", ") + g.name;
+    for (const auto& g : m.cell_node_fields) have += (have.empty() ? "" : ", ") + g.name + " (a node field: a dgsolve output?)";
     throw InputError(source, "no cell field \"" + name + "\" (expected the output of estimate-frame; fields present: " +
                                  (have.empty() ? std::string("none") : have) + ")");
   }

@@ -93,6 +93,8 @@ mkcase() { printf '%s\n' "$2" >"$T/$1.json"; }
 mkcase badexpr '{"exact": "sin(x))", "advection": [1, 0]}'
 expect_fail "column 7" "$T/sq4.msh" "$T/badexpr.json" 1
 expect_fail "badexpr.json" "$T/sq4.msh" "$T/badexpr.json" 1
+mkcase badpow '{"exact": "x**2", "advection": [1, 0]}'
+expect_fail "powers are written x^2" "$T/sq4.msh" "$T/badpow.json" 1
 mkcase badname '{"exact": "2*z", "advection": [1, 0]}'
 expect_fail "unknown name near 'z'" "$T/sq4.msh" "$T/badname.json" 1
 mkcase badkey '{"exact": "x", "advection": [1, 0], "difusion": [[1, 0], [0, 1]]}'
