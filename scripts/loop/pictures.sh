@@ -29,6 +29,10 @@ done
 PY="${PYTHON:-}"
 [ -n "$PY" ] || { [ -x /usr/bin/python3 ] && PY=/usr/bin/python3 || PY=python3; }
 [ -f "$OUT/loop.json" ] || { echo "pictures: $OUT is not a loop's run directory (no loop.json)" >&2; exit 2; }
+if [ -n "$WINDOW" ]; then  # the close-up: x0,x1,y0,y1 with x0 < x1, y0 < y1 (the loop's own check)
+  "$PY" -c 'import sys; v = [float(t) for t in sys.argv[1].split(",")]; assert len(v) == 4 and v[0] < v[1] and v[2] < v[3]' \
+    "$WINDOW" 2>/dev/null || { echo "pictures: WINDOW='$WINDOW': give x0,x1,y0,y1 with x0 < x1 and y0 < y1" >&2; exit 2; }
+fi
 # titles: case (mode), p, method
 [ -n "$NAME" ] || NAME="$("$PY" "$here/loopctl.py" plot-title "$OUT")"
 last="$(cat "$OUT/loop.done" 2>/dev/null || true)"
@@ -37,12 +41,18 @@ if [ -z "$last" ]; then  # unfinished run: the last solved step
   while [ -s "$OUT/step-$((last + 1))/sol.msh" ]; do last=$((last + 1)); done
 fi
 
-pic() {  # pic OUTPUT INPUT ARGS...: skipped when OUTPUT is newer than INPUT
+pic() {  # pic OUTPUT INPUT ARGS...: skipped when OUTPUT is newer than INPUT and was drawn with
+  # the same arguments (.OUTPUT.args beside it: a close-up asked with another WINDOW is drawn again)
   local o="$1" in="$2"; shift 2
   [ -s "$in" ] || return 0
-  if [ ! -s "$o" ] || [ "$in" -nt "$o" ]; then
-    meshplot "$in" "$@" -q -o "$o" --report - >/dev/null 2>"$OUT/meshplot.log" \
-      || echo "pictures: warning: meshplot failed for $o: $(tail -n1 "$OUT/meshplot.log")" >&2
+  local args="$*" stamp
+  stamp="$(dirname "$o")/.$(basename "$o").args"
+  if [ ! -s "$o" ] || [ "$in" -nt "$o" ] || [ "$(cat "$stamp" 2>/dev/null)" != "$args" ]; then
+    if meshplot "$in" "$@" -q -o "$o" --report - >/dev/null 2>"$OUT/meshplot.log"; then
+      printf '%s\n' "$args" > "$stamp"
+    else
+      echo "pictures: warning: meshplot failed for $o: $(tail -n1 "$OUT/meshplot.log")" >&2
+    fi
   fi
 }
 

@@ -60,6 +60,20 @@ rc=0; make --no-print-directory -f "$SRC/Makefile.cases" loop "${LOOP[@]}" BIN="
 [ $rc -ne 0 ] && grep -q "BIN=$T/no-such-bin: no dgsolve there" "$T/log-typo.txt" || { cat "$T/log-typo.txt"; fail "typo'd BIN accepted"; }
 [ ! -e "$T/run-typo" ] || fail "typo'd BIN: OUT created"
 
+# pictures again with another close-up window: drawn again (was: skipped, the close-up being newer
+# than its mesh); the same window again: not redrawn; a malformed window: refused
+"${MK[@]}" pictures OUT="$T/run" WINDOW=0,0.5,0,0.5 > "$T/logp.txt" 2>&1 || { cat "$T/logp.txt"; fail "pictures"; }
+cu="$T/run/final-mesh-closeup.png"
+[ -s "$cu" ] || fail "no close-up"
+sum1="$(md5sum < "$cu")"; t1="$(stat -c %Y.%N "$cu")"
+sleep 1
+"${MK[@]}" pictures OUT="$T/run" WINDOW=0,0.5,0,0.5 > "$T/logp.txt" 2>&1 || { cat "$T/logp.txt"; fail "pictures (same window)"; }
+[ "$t1" = "$(stat -c %Y.%N "$cu")" ] || fail "the same window drew the close-up again"
+"${MK[@]}" pictures OUT="$T/run" WINDOW=0.5,1,0.5,1 > "$T/logp.txt" 2>&1 || { cat "$T/logp.txt"; fail "pictures (new window)"; }
+[ "$sum1" != "$(md5sum < "$cu")" ] || fail "another window left the close-up as it was"
+rc=0; "${MK[@]}" pictures OUT="$T/run" WINDOW=0.45,0.55,0.3 > "$T/logp.txt" 2>&1 || rc=$?
+[ $rc -ne 0 ] && grep -q "WINDOW='0.45,0.55,0.3': give x0,x1,y0,y1" "$T/logp.txt" || { cat "$T/logp.txt"; fail "bad window accepted"; }
+
 # ---- 2. resume: delete the last step, rerun -> the same table (times aside); step 0 is not redone
 strip() { "$PY" -c "import csv,sys
 for r in csv.DictReader(open(sys.argv[1])): print({k: v for k, v in r.items() if not k.startswith('t_')})" "$1"; }
