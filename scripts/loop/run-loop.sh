@@ -69,15 +69,15 @@ is_num() { [[ "$1" =~ ^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$|^[0-9]+\.$ ]]; }
 
 case "$METHOD" in
   lpcvt|bamg|fixed-fraction|uniform) ;;
-  "") die "METHOD is not set (METHOD=lpcvt|bamg|fixed-fraction|uniform)" ;;
+  "") die "METHOD is not set (--method lpcvt|bamg|fixed-fraction|uniform; with make: METHOD=...)" ;;
   *) die "unknown METHOD '$METHOD' (use lpcvt, bamg, fixed-fraction or uniform)" ;;
 esac
 case "$MODE" in
   feature|goal) ;;
-  "") die "MODE is not set (MODE=feature|goal)" ;;
+  "") die "MODE is not set (--mode feature|goal; with make: MODE=...)" ;;
   *) die "unknown MODE '$MODE' (use feature or goal)" ;;
 esac
-[ -n "$CASE" ] || die "CASE is not set (a case file, e.g. CASE=examples/cases/sshock.json)"
+[ -n "$CASE" ] || die "CASE is not set (a case file: --case examples/cases/sshock.json; with make: CASE=...)"
 if [ ! -f "$CASE" ] && [[ "$CASE" != */* ]] && [ -f "$root/examples/cases/${CASE%.json}.json" ]; then
   CASE="$root/examples/cases/${CASE%.json}.json"   # short name: CASE=sshock
 fi
@@ -86,7 +86,7 @@ if [ ! -f "$CASE" ]; then
   die "unknown CASE '$CASE': no such file${avail:+ (shipped cases: $avail)}"
 fi
 msg="$(ctl check-case "$CASE" "$MODE" 2>&1)" || die "$msg"
-[ -n "$MESH" ] || die "MESH is not set (the start mesh, e.g. MESH=examples/meshes/square16.msh)"
+[ -n "$MESH" ] || die "MESH is not set (the start mesh: --mesh examples/meshes/square16.msh; with make: MESH=...)"
 [ -f "$MESH" ] || die "MESH '$MESH': no such file"
 is_uint "$P" || die "P='$P': the DG degree must be an integer"
 is_uint "$STEPS" || die "STEPS='$STEPS': must be a non-negative integer (number of adaptations)"
@@ -115,7 +115,7 @@ is_num "$START_JITTER" && "$PY" -c "import sys; sys.exit(0 if float('$START_JITT
   || die "PHASES='$PHASES': must be an integer in [0, 16] (lpcvt --phases: lattice phases tried, 0 = auto)"
 [ -z "$WALLS" ] || [ "$WALLS" = slide ] || [ "$WALLS" = fixed ] \
   || die "WALLS='$WALLS': must be slide or fixed (quadsmooth --walls: wall nodes slide along straight walls or stay)"
-[ -n "$OUT" ] || die "OUT is not set (the run directory)"
+[ -n "$OUT" ] || die "OUT is not set (the run directory: --out DIR; with make: OUT=DIR)"
 case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
 case "$FIT_FRAME" in raw|meshed|capped) ;; *) die "FIT_FRAME='$FIT_FRAME': use raw (size-solve's frame), meshed (the frame lpcvt meshed) or capped (meshed, never coarser than raw)" ;; esac
