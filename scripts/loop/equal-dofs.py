@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""Two loops' errors at equal DOFs: for every step of loop A, B's error at A's DOF count.
+
+usage: equal-dofs.py A/convergence.csv B/convergence.csv [--mode feature|goal] [--labels A,B]
+
+The runs of scripts/loop/run-loop.sh (Makefile.cases loop) on the same case: each row of A's
+table against B's curve, log(error) interpolated linearly in log(DOFs) between B's two steps
+around A's DOF count (outside B's range: "-", no extrapolation). The error is the L2 error
+(--mode feature, the default) or |functional_error| (--mode goal). Prints a Markdown table and
+the geometric mean of A / B over the rows compared; exit 2 on a missing or malformed table.
+For the thesis's studies, scripts/loop/compare.py compares against the thesis's own figures.
+Python 3 standard library only.
+"""
+import argparse
+import csv
+import math
+import sys
+
+
+def die(msg):
+    print("equal-dofs: " + msg, file=sys.stderr)
+    sys.exit(2)
+
+
+def curve(path, column):
+    try:
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        die("%s: %s" % (path, e.strerror or e))
+    if not rows or "dofs" not in rows[0] or column not in rows[0]:
+        die("%s: not a loop's convergence.csv (needs the columns dofs and %s)" % (path, column))
+    out = []
+    for r in rows:
+        try:
+            n, e = float(r["dofs"]), abs(float(r[column]))
+        except ValueError:
+            continue  # a step without that figure (e.g. no functional)
+        if n > 0 and e > 0:
+            out.append((n, e))
+    if not out:
+        die("%s: no step with both dofs and %s" % (path, column))
+    return sorted(out)
+
+
+def at(points, n):
+    """log-log interpolation of the error at DOFs n; None outside the points' range."""
+    for (n0, e0), (n1, e1) in zip(points, points[1:]):
+        if n0 <= n <= n1 and n1 > n0:
+            t = (math.log(n) - math.log(n0)) / (math.log(n1) - math.log(n0))
+            return math.exp((1 - t) * math.log(e0) + t * math.log(e1))
+    if points and n == points[0][0]:
+        return points[0][1]
+    return None
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("a")
+    ap.add_argument("b")
+    ap.add_argument("--mode", choices=("feature", "goal"), default="feature")
+    ap.add_argument("--labels", default="A,B")
+    o = ap.parse_args(argv)
+    la, lb = (o.labels.split(",") + ["B"])[:2]
+    column = "l2_error" if o.mode == "feature" else "functional_error"
+    A, B = curve(o.a, column), curve(o.b, column)
+    print("| DOFs | %s %s | %s %s at those DOFs | %s / %s |" % (la, column, lb, column, la, lb))
+    print("|---|---|---|---|")
+    logs = []
+    for n, e in A:
+        eb = at(B, n)
+        if eb is None:
+            print("| %d | %.3e | - | - |" % (n, e))
+            continue
+        logs.append(math.log(e / eb))
+        print("| %d | %.3e | %.3e | %.3g |" % (n, e, eb, e / eb))
+    if logs:
+        print("\n%s / %s at equal DOFs: geometric mean %.3g over %d steps (range %.3g-%.3g)"
+              % (la, lb, math.exp(sum(logs) / len(logs)), len(logs), math.exp(min(logs)), math.exp(max(logs))))
+    else:
+        print("\nno step of %s within %s's DOF range" % (la, lb))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
