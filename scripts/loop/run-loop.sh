@@ -82,7 +82,7 @@ if [ ! -f "$CASE" ] && [[ "$CASE" != */* ]] && [ -f "$root/examples/cases/${CASE
   CASE="$root/examples/cases/${CASE%.json}.json"   # short name: CASE=sshock
 fi
 if [ ! -f "$CASE" ]; then
-  avail="$(cd "$root/examples/cases" 2>/dev/null && ls *.json 2>/dev/null | sed 's/\.json$//' | tr '\n' ' ' || true)"
+  avail="$(cd "$root/examples/cases" 2>/dev/null && ls *.json 2>/dev/null | sed 's/\.json$//' | paste -sd ' ' || true)"
   die "unknown CASE '$CASE': no such file${avail:+ (shipped cases: $avail)}"
 fi
 msg="$(ctl check-case "$CASE" "$MODE" 2>&1)" || die "$msg"

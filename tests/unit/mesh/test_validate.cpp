@@ -58,7 +58,7 @@ TEST_CASE("each problem is named") {
     CHECK(problem(m) == "");
     std::string p = problem(m, quads);
     CHECK(has(p, "m.msh: cell 2 (centroid"));
-    CHECK(has(p, "is a triangle, but quadrilaterals are required (2 triangles, 3 quadrilaterals)"));
+    CHECK(has(p, "is a triangle, but quadrilaterals are required (2 triangles, 3 quadrilaterals; in Gmsh: Recombine Surface, or recombine TRI.msh -o QUAD.msh)"));
   }
   SUBCASE("an inverted quad") {
     Mesh m = make_perturbed_quads(3, 3, 0.1, 1);
