@@ -21,6 +21,11 @@
 # failing step — the files of the earlier steps are saved and valid, rerunning resumes; 2 bad input
 # or options, nothing run; 128+N killed by signal N (Ctrl-C: 130), also resumable.
 set -euo pipefail
+# The whole script is one compound command ({ ... exit; }): bash reads all of it before it runs
+# any, so editing this file while a loop runs (a git pull during a long study) cannot change what
+# that loop does. Bash otherwise reads a script as it goes, and a running loop failed mid-way when
+# lines were added above where it was (cli.loop_edit).
+{
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -496,3 +501,5 @@ if [ "$PICTURES" = yes ]; then
   "$here/pictures.sh" "$OUT" ${WINDOW:+--window "$WINDOW"} ${THESIS_KEY:+--thesis-case "$THESIS_KEY"}
 fi
 say "done: $rows solves; table $OUT/convergence.csv"
+exit
+}
