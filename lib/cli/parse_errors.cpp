@@ -60,6 +60,17 @@ std::string parse_error_message(const CLI::App& app, int argc, char** argv, cons
   if (!unknown.empty()) return "unknown option " + unknown;
   std::string msg = e.what();
   if (const size_t f = msg.find(kFileProblem); f != std::string::npos) return msg.substr(f + 1);
+  // CLI11's "Could not convert: --degree = 2.5": say what the option takes
+  static const std::regex convert(R"(Could not convert: (\S+) = (.*))");
+  if (std::smatch m; std::regex_search(msg, m, convert)) {
+    const CLI::Option* o = app.get_option_no_throw(m[1].str());
+    const std::string type = o ? o->get_type_name() : "";
+    const char* what = type.rfind("INT", 0) == 0    ? "a whole number"
+                       : type.rfind("UINT", 0) == 0 ? "a non-negative whole number"
+                       : type.rfind("FLOAT", 0) == 0 ? "a number"
+                                                     : nullptr;
+    if (what) return m[1].str() + " " + m[2].str() + ": not " + what;
+  }
   static const std::regex long_number(R"(-?[0-9]+\.?[0-9]*(?:[eE][-+]?[0-9]+)?)");
   std::string out;
   auto it = std::sregex_iterator(msg.begin(), msg.end(), long_number);

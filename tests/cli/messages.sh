@@ -34,6 +34,21 @@ done
 rc=0; msg=$(lpcvt -q --bogus 2>&1) || rc=$?
 grep -q 'unknown option --bogus' <<<"$msg" || fail "lpcvt: $msg"
 
+# --- a value of the wrong type says what the option takes (was CLI11's "Could not convert:
+# --degree = 2.5")
+for c in "dgsolve|-p 2.5|--degree 2.5: not a whole number" "lpcvt|--seed abc|--seed abc: not a non-negative whole number" \
+         "lpcvt|--lp-exponent six|--lp-exponent six: not a number"; do
+  IFS='|' read -r tool opt want <<<"$c"
+  case $tool in
+    dgsolve) args=("$S/examples/meshes/square16.msh" -c "$S/examples/cases/smooth.json") ;;
+    lpcvt) args=("$S/tests/fixtures/philip/input_ss15_fb_p1_3.msh") ;;
+  esac
+  rc=0; msg=$($tool "${args[@]}" -o "$T/y.msh" $opt 2>&1) || rc=$?
+  [ $rc -eq 2 ] || fail "$tool $opt: exit $rc"
+  grep -qF -- "$want" <<<"$msg" || fail "$tool $opt: '$msg' lacks '$want'"
+done
+[ ! -e "$T/y.msh" ] || fail "output written despite a malformed option value"
+
 # --- a report that would overwrite an input is named as the report, with its remedy (was
 # "X.json: output would overwrite the input file X.json" for `-c X.json -o X.msh`)
 cp "$S/examples/cases/smooth.json" "$T/X.json"
