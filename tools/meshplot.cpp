@@ -11,7 +11,7 @@
 using namespace quadapt;
 
 int main(int argc, char** argv) {
-  Tool tool("meshplot", "draw a mesh, a field as colours or the frame as glyphs (SVG or PNG)",
+  Tool tool("meshplot", "Draw a mesh, a field as colours or the frame as glyphs (SVG or PNG)",
             "Draws the cell edges of FILE.msh (boundary thicker). --field NAME colours a scalar per-cell\n"
             "field (theta, rho, B, h, dwr, ...) or the DG solution u (sub-sampled inside each quad so the\n"
             "degree-p polynomial shows), with a colour bar; --log10 colours log10|value| (DWR). --field Vinv\n"
@@ -25,21 +25,21 @@ int main(int argc, char** argv) {
   int width = 800, subsample = 0;
   double glyph_scale = 1.0;
   auto& app = tool.app();
-  app.add_option("FILE", in, "mesh (.msh) with the field to draw")->required()->check(CLI::ExistingFile);
-  app.add_option("-o,--output", out, "picture: .svg or .png")->required();
-  app.add_option("--field", field, "field to draw: a scalar cell field, the DG solution u, or the frame Vinv");
-  app.add_flag("--log10", log10, "colour log10|value| (e.g. the DWR)");
-  app.add_option("--window", window, "close-up x0,x1,y0,y1 (world coordinates)");
-  app.add_option("--glyph", glyph, "frame glyph: cross (1/h, thesis Fig. 6.5) or parallelogram (true size)")
+  app.add_option("FILE", in, "Mesh (.msh) with the field to draw")->required()->check(CLI::ExistingFile);
+  app.add_option("-o,--output", out, "Picture: .svg or .png")->required();
+  app.add_option("--field", field, "Field to draw: a scalar cell field, the DG solution u, or the frame Vinv");
+  app.add_flag("--log10", log10, "Colour log10|value| (e.g. the DWR)");
+  app.add_option("--window", window, "Close-up x0,x1,y0,y1 (world coordinates)");
+  app.add_option("--glyph", glyph, "Frame glyph: cross (1/h, thesis Fig. 6.5) or parallelogram (true size)")
       ->capture_default_str();
-  app.add_option("--glyph-scale", glyph_scale, "multiplies the glyph size")->capture_default_str();
-  app.add_option("--width", width, "width of the plot area in pixels")->capture_default_str();
-  app.add_option("--cmap", cmap, "colour map: viridis (default), coolwarm (default for u), gray");
-  app.add_option("--range", range, "colour range lo,hi (in log10 units with --log10)");
+  app.add_option("--glyph-scale", glyph_scale, "Multiplies the glyph size")->capture_default_str();
+  app.add_option("--width", width, "Width of the plot area in pixels")->capture_default_str();
+  app.add_option("--cmap", cmap, "Colour map: viridis (default), coolwarm (default for u), gray");
+  app.add_option("--range", range, "Colour range lo,hi (in log10 units with --log10)");
   app.add_option("--subsample", subsample, "DG field: sub-quads per direction in each cell (0 = auto)")
       ->capture_default_str();
-  app.add_flag("--no-edges", no_edges, "do not draw the cell edges");
-  app.add_option("--title", title, "title above the picture (default: the file and field names; '' for none)");
+  app.add_flag("--no-edges", no_edges, "Do not draw the cell edges");
+  app.add_option("--title", title, "Title above the picture (default: the file and field names; '' for none)");
 
   return tool.run(argc, argv, [&] {
     tool.input(in);
