@@ -68,6 +68,9 @@ int main(int argc, char** argv) {
       cs = load_case(case_path);
       check_case_boundaries(cs, mesh);
     }
+    if (mesh.cell_field("Vinv"))  // a frame file given as the mesh: legal, but rarely meant
+      tool.log("note: " + in + " carries a frame (Vinv): solving on its cells, the mesh the frame was made on "
+               "(the mesh the frame asks for is lpcvt's or bamgquad's output)");
     tool.log(std::to_string(mesh.num_cells()) + " cells, p = " + std::to_string(opt.p) + ", " +
              std::to_string(mesh.num_cells() * (opt.p + 1) * (opt.p + 1)) + " dofs");
 

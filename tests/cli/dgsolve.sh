@@ -134,4 +134,10 @@ set -e
 [ $rc = 2 ] || fail "overwriting the input: exit $rc"
 python3 "$MK" 4 "$T/sq4b.msh"
 cmp -s "$T/sq4.msh" "$T/sq4b.msh" || fail "input modified"
+# --- a frame file given as the mesh (a loop's step-K/frame.msh for its mesh.msh): solved on its
+# cells, with a note that says what it is (was: silent); a plain mesh gets no note
+dgsolve "$SRC/tests/fixtures/philip/input_ss15_fb_p1_3.msh" -c "$CASES/smooth.json" -p 1 -o "$T/fr.msh" 2> "$T/fr.err"
+grep -q "note: .*input_ss15_fb_p1_3.msh carries a frame (Vinv): solving on its cells" "$T/fr.err" || fail "no frame note: $(cat "$T/fr.err")"
+dgsolve "$T/sq8.msh" -c "$CASES/smooth.json" -p 1 -o "$T/plain.msh" 2> "$T/plain.err"
+grep -q "carries a frame" "$T/plain.err" && fail "a frame note for a plain mesh"
 echo "dgsolve CLI: OK"
