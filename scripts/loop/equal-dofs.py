@@ -5,7 +5,7 @@ usage: equal-dofs.py A/convergence.csv B/convergence.csv [--mode feature|goal] [
 
 The runs of scripts/loop/run-loop.sh (Makefile.cases loop) on the same case: each row of A's
 table against B's curve, log(error) interpolated linearly in log(DOFs) between B's two steps
-around A's DOF count (outside B's range: "-", no extrapolation). The error is the L2 error
+around A's DOF count (compare.py's interp_loglog; outside B's range: "-", no extrapolation). The error is the L2 error
 (--mode feature, the default) or |functional_error| (--mode goal). Prints a Markdown table and
 the geometric mean of A / B over the rows compared; exit 2 on a missing or malformed table.
 For the thesis's studies, scripts/loop/compare.py compares against the thesis's own figures.
@@ -13,8 +13,11 @@ Python 3 standard library only.
 """
 import argparse
 import csv
-import math
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from compare import geomean, interp_loglog  # noqa: E402  (the study reports' interpolation)
 
 
 def die(msg):
@@ -43,17 +46,6 @@ def curve(path, column):
     return sorted(out)
 
 
-def at(points, n):
-    """log-log interpolation of the error at DOFs n; None outside the points' range."""
-    for (n0, e0), (n1, e1) in zip(points, points[1:]):
-        if n0 <= n <= n1 and n1 > n0:
-            t = (math.log(n) - math.log(n0)) / (math.log(n1) - math.log(n0))
-            return math.exp((1 - t) * math.log(e0) + t * math.log(e1))
-    if points and n == points[0][0]:
-        return points[0][1]
-    return None
-
-
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("a")
@@ -66,17 +58,17 @@ def main(argv):
     A, B = curve(o.a, column), curve(o.b, column)
     print("| DOFs | %s %s | %s %s at those DOFs | %s / %s |" % (la, column, lb, column, la, lb))
     print("|---|---|---|---|")
-    logs = []
+    ratios = []
     for n, e in A:
-        eb = at(B, n)
-        if eb is None:
+        eb, flag = interp_loglog(B, n)
+        if eb is None or flag:  # off B's curve: no extrapolation here
             print("| %d | %.3e | - | - |" % (n, e))
             continue
-        logs.append(math.log(e / eb))
+        ratios.append(e / eb)
         print("| %d | %.3e | %.3e | %.3g |" % (n, e, eb, e / eb))
-    if logs:
+    if ratios:
         print("\n%s / %s at equal DOFs: geometric mean %.3g over %d steps (range %.3g-%.3g)"
-              % (la, lb, math.exp(sum(logs) / len(logs)), len(logs), math.exp(min(logs)), math.exp(max(logs))))
+              % (la, lb, geomean(ratios), len(ratios), min(ratios), max(ratios)))
     else:
         print("\nno step of %s within %s's DOF range" % (la, lb))
     return 0
