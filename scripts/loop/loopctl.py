@@ -7,6 +7,7 @@
   loopctl.py show convergence.csv [COL...] aligned table of some columns
   loopctl.py check-case CASE.json [MODE]    exit 1 with a message unless CASE is a JSON object
                                             (with an exact solution, and a functional when MODE is goal)
+  loopctl.py check-window W                exit 1 unless W is x0,x1,y0,y1 with x0 < x1, y0 < y1 (a close-up)
   loopctl.py params OUT/loop.json KEY=VAL.. write/compare the run's parameters (exit 1 on a
                                             mismatch, naming the differing keys)
   loopctl.py case-sum CASE.json             the case's contents' sha256 (16 hex digits): its parsed
@@ -155,6 +156,15 @@ def cmd_case_sum(args):
         case = {k: v for k, v in case.items() if k not in ("name", "description")}
         data = json.dumps(case, sort_keys=True, separators=(",", ":")).encode()
     print(hashlib.sha256(data).hexdigest()[:16])
+
+
+def cmd_check_window(args):
+    try:
+        v = [float(t) for t in args[0].split(",")]
+        ok = len(v) == 4 and v[0] < v[1] and v[2] < v[3]
+    except ValueError:
+        ok = False
+    sys.exit(0 if ok else 1)
 
 
 def cmd_params(args):
@@ -321,7 +331,7 @@ def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     cmd, args = sys.argv[1], sys.argv[2:]
-    {"get": cmd_get, "summary": cmd_summary, "show": cmd_show, "check-case": cmd_check_case, "case-sum": cmd_case_sum, "params": cmd_params, "table": cmd_table,
+    {"get": cmd_get, "summary": cmd_summary, "show": cmd_show, "check-case": cmd_check_case, "check-window": cmd_check_window, "case-sum": cmd_case_sum, "params": cmd_params, "table": cmd_table,
      "stop": cmd_stop, "plot-title": cmd_plot_title, "thesis-key": cmd_thesis_key}.get(cmd, lambda a: sys.exit("loopctl: unknown command " + cmd))(args)
 
 

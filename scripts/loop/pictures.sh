@@ -30,8 +30,7 @@ PY="${PYTHON:-}"
 [ -n "$PY" ] || { [ -x /usr/bin/python3 ] && PY=/usr/bin/python3 || PY=python3; }
 [ -f "$OUT/loop.json" ] || { echo "pictures: $OUT is not a loop's run directory (no loop.json)" >&2; exit 2; }
 if [ -n "$WINDOW" ]; then  # the close-up: x0,x1,y0,y1 with x0 < x1, y0 < y1 (the loop's own check)
-  "$PY" -c 'import sys; v = [float(t) for t in sys.argv[1].split(",")]; assert len(v) == 4 and v[0] < v[1] and v[2] < v[3]' \
-    "$WINDOW" 2>/dev/null || { echo "pictures: WINDOW='$WINDOW': give x0,x1,y0,y1 with x0 < x1 and y0 < y1" >&2; exit 2; }
+  "$PY" "$here/loopctl.py" check-window "$WINDOW" || { echo "pictures: WINDOW='$WINDOW': give x0,x1,y0,y1 with x0 < x1 and y0 < y1" >&2; exit 2; }
 fi
 # titles: case (mode), p, method
 [ -n "$NAME" ] || NAME="$("$PY" "$here/loopctl.py" plot-title "$OUT")"

@@ -138,8 +138,7 @@ if [ "$METHOD" = fixed-fraction ]; then  # a 1-component cell field of what refi
   [[ " $ffok " == *" $FF_BY "* ]] || die "FF_BY='$FF_BY': use one of: $ffok (MODE=$MODE)"
 fi
 if [ -n "$WINDOW" ]; then  # the pictures' close-up: x0,x1,y0,y1 with x0 < x1, y0 < y1
-  "$PY" -c 'import sys; v = [float(t) for t in sys.argv[1].split(",")]; assert len(v) == 4 and v[0] < v[1] and v[2] < v[3]' \
-    "$WINDOW" 2>/dev/null || die "WINDOW='$WINDOW': give x0,x1,y0,y1 with x0 < x1 and y0 < y1"
+  ctl check-window "$WINDOW" || die "WINDOW='$WINDOW': give x0,x1,y0,y1 with x0 < x1 and y0 < y1"
 fi
 
 # tools this loop needs
