@@ -29,6 +29,9 @@ from matplotlib.path import Path
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "cli"))
 from golden_compare import read_msh  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from frame_roughness import distortion  # noqa: E402  (the roughness table's face measure)
+
 
 def xy(nodes, k):
     return np.array(nodes[k][:2], float)
@@ -54,14 +57,6 @@ class Frame:
             if self.paths[j].contains_point(z, radius=tol) or self.paths[j].contains_point(z, radius=-tol):
                 return int(j)
         return int(near[0]) if len(near) else None
-
-
-def distortion(Ma, Mb):
-    P = Mb @ np.linalg.inv(Ma)
-    u, w = P[:, 0], P[:, 1]
-    c = abs(u @ w) / (np.linalg.norm(u) * np.linalg.norm(w))
-    s = np.linalg.svd(P, compute_uv=False)
-    return 90 - math.degrees(math.acos(min(1.0, c))), math.exp(max(abs(math.log(s[0])), abs(math.log(s[1]))))
 
 
 def split(frame_path, mesh_path):

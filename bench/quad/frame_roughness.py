@@ -27,6 +27,16 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from golden_compare import read_msh  # noqa: E402
 
 
+def distortion(Ma, Mb):
+    """Cell a's unit square measured in b's metric, P = M_b M_a^-1: its corner distortion
+    90 - angle(P e1, P e2) in degrees and its length factor exp max |log sigma_i(P)|."""
+    P = Mb @ np.linalg.inv(Ma)
+    u, w = P[:, 0], P[:, 1]
+    c = abs(u @ w) / (np.linalg.norm(u) * np.linalg.norm(w))
+    s = np.linalg.svd(P, compute_uv=False)
+    return 90 - math.degrees(math.acos(min(1.0, c))), math.exp(max(abs(math.log(s[0])), abs(math.log(s[1]))))
+
+
 def roughness(path):
     m = read_msh(path)
     V = m["views"]["Vinv"]["values"]
@@ -46,12 +56,9 @@ def roughness(path):
         if len(ks) != 2:
             continue
         for a, b in (ks, ks[::-1]):
-            P = Ms[b] @ np.linalg.inv(Ms[a])
-            u, w = P[:, 0], P[:, 1]
-            c = abs(u @ w) / (np.linalg.norm(u) * np.linalg.norm(w))
-            dev.append(90 - math.degrees(math.acos(min(1.0, c))))
-            s = np.linalg.svd(P, compute_uv=False)
-            fac.append(math.exp(max(abs(math.log(s[0])), abs(math.log(s[1])))))
+            d, f = distortion(Ms[a], Ms[b])
+            dev.append(d)
+            fac.append(f)
     dev, fac = np.array(dev), np.array(fac)
     return dict(cells=len(conn), faces=len(dev) // 2, dev_median=float(np.median(dev)),
                 dev_over_10=float(np.mean(dev > 10)), len_median=float(np.median(fac)),
