@@ -36,11 +36,8 @@ class Stopwatch {
 Eigen::VectorXd read_solution_field(const Mesh& mesh, const std::string& field, const std::string& path, int& p) {
   const CellNodeField* f = mesh.cell_node_field(field);
   if (!f) {
-    std::string have;
-    for (const auto& g : mesh.cell_node_fields) have += (have.empty() ? "" : ", ") + g.name;
-    for (const auto& g : mesh.cell_fields) have += (have.empty() ? "" : ", ") + g.name;
     throw InputError(path, "no DG solution field '" + field + "' (expected a dgsolve output; fields present: " +
-                               (have.empty() ? std::string("none") : have) + ")");
+                               mesh.field_list() + ")");
   }
   Eigen::VectorXd U;
   try {

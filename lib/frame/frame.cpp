@@ -98,10 +98,7 @@ double cells_for_complexity(double complexity, int degree) {
 Frame frame_from_mesh(const Mesh& m, const std::string& path, std::optional<SizeConvention> convention) {
   const CellField* f = m.cell_field("Vinv");
   if (!f) {
-    std::string have;
-    for (const auto& cf : m.cell_fields) have += (have.empty() ? "" : ", ") + cf.name;
-    throw InputError(path, "no cell field \"Vinv\" (the frame M = V^-1); fields present: " +
-                               (have.empty() ? std::string("none") : have));
+    throw InputError(path, "no cell field \"Vinv\" (the frame M = V^-1); fields present: " + m.field_list());
   }
   if (f->ncomp != 9) throw InputError(path, "field \"Vinv\" has " + std::to_string(f->ncomp) + " components, expected 9");
   if (f->values.size() != static_cast<size_t>(m.num_cells()) * 9)

@@ -57,6 +57,13 @@ CellField* Mesh::cell_field(const std::string& name) {
     if (f.name == name) return &f;
   return nullptr;
 }
+std::string Mesh::field_list() const {
+  std::string have;
+  for (const auto& f : cell_fields) have += (have.empty() ? "" : ", ") + f.name;
+  for (const auto& f : cell_node_fields) have += (have.empty() ? "" : ", ") + f.name + " (node field)";
+  return have.empty() ? "none" : have;
+}
+
 const CellNodeField* Mesh::cell_node_field(const std::string& name) const {
   for (const auto& f : cell_node_fields)
     if (f.name == name) return &f;

@@ -101,6 +101,9 @@ struct Mesh {
   void set_field(CellNodeField f);
   /// Removes every field (e.g. before writing a remeshed geometry).
   void clear_fields() { cell_fields.clear(); cell_node_fields.clear(); frame_convention.clear(); }
+  /// For messages: the fields' names, cell fields first, node fields marked "(node field)"
+  /// ("p, theta, u (node field)"); "none" when there are none.
+  std::string field_list() const;
 };
 
 // ----------------------------------------------------------------------------- geometry

@@ -28,11 +28,8 @@ const std::vector<double>* scalar_field(const Mesh& m, const std::string& name, 
   const CellField* f = m.cell_field(name);
   if (!f) {
     if (!required) return nullptr;
-    std::string have;
-    for (const auto& g : m.cell_fields) have += (have.empty() ? "" : ", ") + g.name;
-    for (const auto& g : m.cell_node_fields) have += (have.empty() ? "" : ", ") + g.name + " (a node field: a dgsolve output?)";
     throw InputError(source, "no cell field \"" + name + "\" (expected the output of estimate-frame; fields present: " +
-                                 (have.empty() ? std::string("none") : have) + ")");
+                                 m.field_list() + ")");
   }
   if (f->ncomp != 1 || f->num_cells() != m.num_cells())
     throw InputError(source, "cell field \"" + name + "\" must be scalar with one value per cell");

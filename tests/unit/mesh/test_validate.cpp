@@ -120,6 +120,15 @@ TEST_CASE("each problem is named") {
   }
 }
 
+TEST_CASE("Mesh::field_list names cell fields, then node fields as such, for messages") {
+  Mesh m = make_structured_quads(2, 2);
+  CHECK(m.field_list() == "none");
+  m.set_field(CellNodeField{"u", 1, 4, 1, std::vector<double>(16, 0.0)});
+  CHECK(m.field_list() == "u (node field)");
+  m.set_field(CellField{"p", 1, {1, 2, 3, 4}});
+  CHECK(m.field_list() == "p, u (node field)");
+}
+
 TEST_CASE("PHiLiP's frame files validate as quad meshes with Vinv") {
   ValidateOptions o;
   o.require = CellKind::Quads;
