@@ -63,6 +63,14 @@ int main(int argc, char** argv) {
     tool.output(out);
     mesh_file_format(out);  // unknown extension -> error before any work
     if (order > 1 && geometry.empty()) throw InputError("", "--order " + std::to_string(order) + " needs --geometry");
+    // options that act only with the curving step or --jitter: refused instead of silently ignored
+    // (--straight-fallback with --geometry and --order 1 stays accepted: the loop passes it for every ORDER)
+    if (nodes != "equal" && (geometry.empty() || order < 2))
+      throw InputError("", "--boundary-nodes " + nodes + " acts only when curving: add --geometry G --order q (q >= 2)");
+    if (fallback && geometry.empty())
+      throw InputError("", "--straight-fallback acts only when curving: add --geometry G --order q (q >= 2)");
+    if (tool.app().count("--seed") > 0 && !(jitter.fraction > 0))
+      throw InputError("", "--seed acts only with --jitter J (J > 0)");
     std::unique_ptr<BoundaryGeometry> g;
     if (!geometry.empty()) {
       auto ph = tool.phase("geometry");

@@ -55,6 +55,12 @@ expect_refusal "annulus.geo: curve 'outer'" "$T/o.msh" -- lpcvt "$T/frame.msh" -
 expect_refusal "boundary 'inlet' is not a physical curve of" "$T/o.msh" -- \
   refine "$M" --uniform --geometry "$S/examples/geometry/annulus.geo" -o "$T/o.msh"
 expect_refusal "--order 3 needs --geometry" "$T/o.msh" -- meshconvert "$M" --order 3 -o "$T/o.msh"
+# options that act only with the curving step / --jitter: refused, not silently ignored (exit 0 before)
+expect_refusal "--boundary-nodes area acts only when curving" "$T/o.msh" -- meshconvert "$M" --boundary-nodes area -o "$T/o.msh"
+expect_refusal "--boundary-nodes area acts only when curving" "$T/o.msh" -- \
+  meshconvert "$M" --geometry "$G" --order 1 --boundary-nodes area -o "$T/o.msh"
+expect_refusal "--straight-fallback acts only when curving" "$T/o.msh" -- meshconvert "$M" --straight-fallback -o "$T/o.msh"
+expect_refusal "--seed acts only with --jitter" "$T/o.msh" -- meshconvert "$M" --seed 5 -o "$T/o.msh"
 
 # --- boundary points on the true circle
 lpcvt -q "$T/frame.msh" --geometry "$G" -o "$T/tri.msh"
