@@ -24,12 +24,31 @@ import json
 import math
 import os
 import re
+import shutil
 import subprocess
 import sys
 
 
+def die(msg):
+    print(f"rates.py: error: {msg}", file=sys.stderr)
+    sys.exit(2)
+
+
 def run(cmd):
-    subprocess.run(cmd, check=True)
+    r = subprocess.run(cmd)
+    if r.returncode != 0:
+        die(f"{cmd[0]} exited with status {r.returncode} (its message above): {' '.join(cmd)}")
+
+
+def find_tools(needed):
+    """The tools on PATH, else those built in this checkout (build/bin), as run-loop.sh does."""
+    build = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "build", "bin")
+    if shutil.which("dgsolve") is None and os.access(os.path.join(build, "dgsolve"), os.X_OK):
+        os.environ["PATH"] = os.path.abspath(build) + os.pathsep + os.environ.get("PATH", "")
+    missing = [t for t in needed if shutil.which(t) is None]
+    if missing:
+        die(f"tool(s) not found on PATH: {' '.join(missing)} (build the project, cmake --build build, and put "
+            "build/bin on PATH; gmsh from your package manager)")
 
 
 def mesh(geo, q, n, out, nodes="gmsh"):
@@ -98,8 +117,18 @@ def main():
     ap.add_argument("--check-straight", type=float, default=None)
     ap.add_argument("--check-functional", type=float, default=None)
     a = ap.parse_args()
+    for f in (a.geo, a.case):
+        if not os.path.isfile(f):
+            die(f"{f}: no such file")
+    try:
+        with open(a.case) as fh:
+            case = json.load(fh)
+    except ValueError as e:
+        die(f"{a.case}: not valid JSON ({e})")
+    if a.wall_radius and (not isinstance(case, dict) or "exact" not in case):
+        die(f"{a.case}: --wall-radius needs the case's \"exact\" expression")
+    find_tools(["gmsh", "dgsolve"] + (["meshconvert"] if a.boundary_nodes != "gmsh" else []))
     os.makedirs(a.out, exist_ok=True)
-    case = json.load(open(a.case))
     j_true = exact_on_circle(case["exact"], a.wall_radius) if a.wall_radius else None
     rows, frows = [], []
     for p in a.degrees:

@@ -96,6 +96,20 @@ python3 -c "
 import json, sys; d = json.load(open(sys.argv[1])); e = d['effectivity']
 assert 0.95 < e < 1.05, d" "$T/dwr.json" || fail "adjoint effectivity on curved cells"
 
+# --- rates.py's bad input: one line "rates.py: error: ...", exit 2, no Python traceback (a copy outside
+# the checkout with no tools on PATH: before, FileNotFoundError 'dgsolve'; a failing dgsolve gave
+# CalledProcessError)
+PY=$(python3 -c "import sys; print(sys.executable)")
+mkdir -p "$T/norepo"; cp "$S/scripts/curved/rates.py" "$T/norepo/"
+rc=0; env PATH=/nonexistent "$PY" "$T/norepo/rates.py" --geo "$S/examples/geometry/annulus.geo" \
+  --case "$S/examples/cases/annulus.json" --degrees 2 --levels 4 8 --out "$T/norepo/o" 2>"$T/err" || rc=$?
+[ $rc -eq 2 ] && grep -q "rates.py: error: tool(s) not found on PATH: gmsh dgsolve" "$T/err" && ! grep -q Traceback "$T/err" \
+  || fail "rates.py without tools: exit $rc: $(cat "$T/err")"
+rc=0; "$PY" "$S/scripts/curved/rates.py" --geo "$S/examples/geometry/annulus.geo" --case "$S/examples/cases/cylinder.json" \
+  --degrees 2 --levels 4 --out "$T/bad" 2>"$T/err" || rc=$?
+[ $rc -eq 2 ] && grep -q "rates.py: error: dgsolve exited with status 2" "$T/err" && ! grep -q Traceback "$T/err" \
+  || fail "rates.py with a failing dgsolve: exit $rc: $(cat "$T/err")"
+
 # --- rates on the annulus
 python3 "$S/scripts/curved/rates.py" --geo "$S/examples/geometry/annulus.geo" --case "$S/examples/cases/annulus.json" \
   --degrees 2 3 --levels 8 16 32 --out "$T/rates" --check-curved 0.8 --check-straight 2.3 || fail "annulus rates"
