@@ -125,7 +125,9 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
     const int q = m.geometric_order();
     if (!opt.allow_curved)
       fail("the mesh has curved cells (geometric order " + std::to_string(q) +
-           "); this tool supports only straight-sided cells (order 1) so far");
+           "); this tool supports only straight-sided cells (order 1) so far; for its vertex view (straight cells "
+           "through the same vertices, fields kept) run: meshconvert " + (path.empty() ? std::string("IN.msh") : path) +
+           " --order 1 -o STRAIGHT.msh");
     if (q > kMaxGeometricOrder || !m.all_quads()) fail("curved cells must be quads of order 2 to " + std::to_string(kMaxGeometricOrder));
     if (m.curved.points.size() != static_cast<size_t>(nc) * m.curved.per_cell())
       fail("curved geometry has " + std::to_string(m.curved.points.size()) + " control points, expected " +

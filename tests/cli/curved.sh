@@ -69,13 +69,17 @@ meshquality -q "$T/shape.msh" --report "$T/shape-quality.json"
 size-solve -q "$T/shape.msh" --complexity 1000 -o "$T/frame.msh" >/dev/null || fail "size-solve on the SHAPE of a curved solution"
 
 # --- tools without the curved map refuse it: exit 2, one line naming the file, nothing written
-for cmd in "refine $T/c.msh --uniform -o $T/out.msh"; do
+# (every tool the docs list; the message says how to get the vertex view)
+for cmd in "refine $T/c.msh --uniform -o $T/out.msh" "lpcvt $T/c.msh -o $T/out.msh" "bamgquad $T/c.msh -o $T/out.msh" \
+           "quadsmooth $T/c.msh -o $T/out.msh" "size-solve $T/c.msh --growth 1.5 -o $T/out.msh"; do
   set +e
   $cmd >"$T/stdout" 2>"$T/err"
   rc=$?
   set -e
   [ $rc = 2 ] || fail "$cmd: exit $rc, expected 2"
   grep -q "the mesh has curved cells (geometric order 3)" "$T/err" || fail "$cmd: message: $(cat "$T/err")"
+  grep -q "c.msh: the mesh has curved cells (geometric order 3); .* run: meshconvert $T/c.msh --order 1 -o STRAIGHT.msh" "$T/err" \
+    || fail "$cmd: message names no remedy: $(cat "$T/err")"
   [ "$(wc -l <"$T/err")" = 1 ] || fail "$cmd: more than one line"
   [ ! -e "$T/out.msh" ] || fail "$cmd wrote an output"
 done
