@@ -3,7 +3,7 @@
 
   check_boundary.py MESH.msh --group cylinder --circle CX CY R [--max 1e-12]
 
-Reads quadapt's MSH 4.1 ASCII (and Gmsh's), takes every node of the line elements (of any order:
+Reads MSH 4.1 ASCII (quadapt's and Gmsh's; other formats: `meshconvert IN -o OUT.msh` first), takes every node of the line elements (of any order:
 the high-order nodes of curved edges too) of the physical curve GROUP and prints, as JSON, the
 number of nodes, the largest | |x - c| - R | and, with --max, the number of nodes farther than
 that ("off"); exit 1 when more than --allow-off (default 0) nodes are.
@@ -14,9 +14,26 @@ import math
 import sys
 
 
+def die(msg):
+    print(f"check_boundary.py: error: {msg}", file=sys.stderr)
+    sys.exit(2)
+
+
 def read(path):
-    with open(path) as f:
-        lines = f.read().split("\n")
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError as e:
+        die(f"{path}: cannot read it ({e.strerror})")
+    head = data[:200].split(b"\n")
+    fmt = head[1].split() if len(head) > 1 and head[0].strip() == b"$MeshFormat" else []
+    if len(fmt) < 2 or not fmt[0].startswith(b"4.") or fmt[1] != b"0":
+        if not fmt:
+            die(f"{path}: not a Gmsh MSH file (it does not start with $MeshFormat)")
+        kind = "binary" if fmt[1:2] == [b"1"] else "ASCII"
+        die(f"{path}: MSH {fmt[0].decode(errors='replace')} {kind}; this script reads MSH 4.1 ASCII only "
+            f"(convert it: meshconvert {path} -o OUT.msh)")
+    lines = data.decode("utf-8", errors="replace").split("\n")
     i = 0
     names, curve_phys, nodes, lines_of = {}, {}, {}, {}
     while i < len(lines):

@@ -114,6 +114,21 @@ rc=0; "$PY" "$S/scripts/curved/rates.py" --geo "$S/examples/geometry/annulus.geo
 [ $rc -eq 2 ] && grep -q "rates.py: error: dgsolve exited with status 2" "$T/err" && ! grep -q Traceback "$T/err" \
   || fail "rates.py with a failing dgsolve: exit $rc: $(cat "$T/err")"
 
+# --- check_boundary.py reads MSH 4.1 ASCII only: Gmsh's MSH 2.2 and binary files, a missing file and
+# a case file are refused with one line and exit 2 (before: ValueError / UnicodeDecodeError /
+# FileNotFoundError tracebacks); the 4.1 ASCII file is read
+gmsh -2 -v 0 -order 2 -setnumber N 2 "$S/examples/geometry/annulus.geo" -format msh22 -o "$T/cb22.msh"
+gmsh -2 -v 0 -order 2 -setnumber N 2 "$S/examples/geometry/annulus.geo" -bin -o "$T/cbbin.msh"
+for f in "$T/cb22.msh:MSH 2.2 ASCII" "$T/cbbin.msh:MSH 4.1 binary" "$T/none.msh:cannot read it" \
+         "$S/examples/cases/annulus.json:not a Gmsh MSH file"; do
+  rc=0; python3 "$S/scripts/curved/check_boundary.py" "${f%%:*}" --group inner --circle 0 0 1 --max 1e-12 2>"$T/err" || rc=$?
+  [ $rc -eq 2 ] && grep -q "check_boundary.py: error: .*${f#*:}" "$T/err" && [ "$(wc -l <"$T/err")" -eq 1 ] \
+    || fail "check_boundary.py ${f%%:*}: exit $rc: $(cat "$T/err")"
+done
+meshconvert -q "$T/cb22.msh" -o "$T/cb41.msh"
+python3 "$S/scripts/curved/check_boundary.py" "$T/cb41.msh" --group inner --circle 0 0 1 --max 1e-12 >/dev/null \
+  || fail "check_boundary.py on meshconvert's output"
+
 # --- rates on the annulus
 python3 "$S/scripts/curved/rates.py" --geo "$S/examples/geometry/annulus.geo" --case "$S/examples/cases/annulus.json" \
   --degrees 2 3 --levels 8 16 32 --out "$T/rates" --check-curved 0.8 --check-straight 2.3 || fail "annulus rates"
