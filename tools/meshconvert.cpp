@@ -69,7 +69,8 @@ int main(int argc, char** argv) {
       throw InputError("", "--boundary-nodes " + nodes + " acts only when curving: add --geometry G --order q (q >= 2)");
     if (fallback && geometry.empty())
       throw InputError("", "--straight-fallback acts only when curving: add --geometry G --order q (q >= 2)");
-    if (tool.app().count("--seed") > 0 && !(jitter.fraction > 0))
+    // (an explicit --jitter 0 with --seed stays accepted: run-loop.sh passes START_JITTER as written, e.g. 0.0)
+    if (tool.app().count("--seed") > 0 && tool.app().count("--jitter") == 0)
       throw InputError("", "--seed acts only with --jitter J (J > 0)");
     std::unique_ptr<BoundaryGeometry> g;
     if (!geometry.empty()) {

@@ -61,6 +61,9 @@ expect_refusal "--boundary-nodes area acts only when curving" "$T/o.msh" -- \
   meshconvert "$M" --geometry "$G" --order 1 --boundary-nodes area -o "$T/o.msh"
 expect_refusal "--straight-fallback acts only when curving" "$T/o.msh" -- meshconvert "$M" --straight-fallback -o "$T/o.msh"
 expect_refusal "--seed acts only with --jitter" "$T/o.msh" -- meshconvert "$M" --seed 5 -o "$T/o.msh"
+# ... but an explicit --jitter 0 with --seed is accepted (run-loop.sh passes START_JITTER as written)
+meshconvert -q "$M" --jitter 0.0 --seed 5 -o "$T/j0.msh"
+test -s "$T/j0.msh"
 
 # --- boundary points on the true circle
 lpcvt -q "$T/frame.msh" --geometry "$G" -o "$T/tri.msh"
