@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cctype>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
@@ -135,6 +136,14 @@ void Tool::set_report_path(const std::string& p) {
 
 void Tool::declare_report() {
   if (report_path_.empty()) return;
+  // a report named like a mesh (`--report keep.msh`) would overwrite that mesh with JSON
+  if (report_explicit_) {
+    std::string ext = std::filesystem::path(report_path_).extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (ext == ".msh" || ext == ".vtu" || ext == ".vtk" || ext == ".geo" || ext == ".png")
+      throw InputError(report_path_, "--report writes a JSON report, not a " + ext.substr(1) +
+                                         " file: give it a .json name");
+  }
   resolve_output(report_path_);
   use_stdio(report_path_, stdout_used_, "output");
   // named in a refusal: `dgsolve M -c X.json -o X.msh` would write its report X.json over the case

@@ -164,6 +164,11 @@ for args in "dgsolve plain.msh -c case.json -p 1 -o s.vtu" "estimate-frame sol.m
   case "$ERR" in *"meshconvert ${out%.*}.msh -o $out"*) ;; *) fail "no meshconvert hint: $args :: $ERR" ;; esac
   for f in "$out" "${out%.*}.json" "${out}.json" t.msh; do [ ! -e "$f" ] || fail "$args wrote $f"; done
 done
+# a report named like a mesh would overwrite that mesh with JSON: refused, the mesh untouched
+cp frame.msh keep.msh
+expect_exit 2 "writes a JSON report, not a msh file" lpcvt frame.msh -o r1.msh --report keep.msh
+cmp -s frame.msh keep.msh || fail "--report keep.msh changed keep.msh"
+[ ! -e r1.msh ] || fail "--report keep.msh: wrote r1.msh"
 # a name without an extension is still a mesh output
 quadsmooth -q plain.msh -o noext
 meshconvert -q noext -o /dev/null --require quads
