@@ -115,6 +115,9 @@ adjoint "$T/sol1.msh" -c "$T/dirfun-case.json" -o "$T/dirfun.msh" 2>"$T/errw" ||
 grep -q "warning: the functional boundary 'right' has Dirichlet data in .*dirfun-case.json" "$T/errw" || fail "no warning: $(cat "$T/errw")"
 adjoint "$T/sol1.msh" -c "$T/smooth.json" -o "$T/nowarn.msh" 2>"$T/errw2"
 if grep -qi warning "$T/errw2"; then fail "a warning without Dirichlet data on the functional boundary: $(cat "$T/errw2")"; fi
+# a penalty factor below 5 (the solution was solved at 20): a warning naming the remedy
+adjoint "$T/sol1.msh" -c "$T/smooth.json" -o "$T/pen.msh" --penalty 0.5 2>"$T/errp" || fail "--penalty 0.5 refused: $(cat "$T/errp")"
+grep -q "warning: --penalty 0.5.* is below 5" "$T/errp" || fail "no penalty warning: $(cat "$T/errp")"
 # never overwrite an input
 cp "$T/sol1.msh" "$T/keep.msh"
 set +e
