@@ -136,14 +136,6 @@ void Tool::set_report_path(const std::string& p) {
 
 void Tool::declare_report() {
   if (report_path_.empty()) return;
-  // a report named like a mesh (`--report keep.msh`) would overwrite that mesh with JSON
-  if (report_explicit_) {
-    std::string ext = std::filesystem::path(report_path_).extension().string();
-    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    if (ext == ".msh" || ext == ".vtu" || ext == ".vtk" || ext == ".geo" || ext == ".png")
-      throw InputError(report_path_, "--report writes a JSON report, not a " + ext.substr(1) +
-                                         " file: give it a .json name");
-  }
   resolve_output(report_path_);
   use_stdio(report_path_, stdout_used_, "output");
   // named in a refusal: `dgsolve M -c X.json -o X.msh` would write its report X.json over the case
@@ -152,6 +144,15 @@ void Tool::declare_report() {
   else
     protect_output(report_path_, "the report written beside the output " + (outputs_.empty() ? std::string() : outputs_.front()),
                    "give --report another path, or -o another name");
+  // a report named like a mesh (`--report keep.msh`) would overwrite that mesh with JSON (checked after
+  // the refusals above, which name the worse mistake: an input, a missing folder)
+  if (report_explicit_) {
+    std::string ext = std::filesystem::path(report_path_).extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (ext == ".msh" || ext == ".vtu" || ext == ".vtk" || ext == ".geo" || ext == ".png")
+      throw InputError(report_path_, "--report writes a JSON report, not a " + ext.substr(1) +
+                                         " file: give it a .json name");
+  }
 }
 
 void Tool::log(const std::string& msg) const {
