@@ -150,6 +150,7 @@ TEST_CASE("Gmsh opens the written file and shows every field with our values") {
     CHECK(worst < 1e-12);  // NaN (point not found) fails too
   }
   fs::remove(file);
+  fs::remove(file.string() + ".opt");  // write_msh's Gmsh display options beside it
 }
 
 TEST_CASE("Gmsh-written binary 4.1, ASCII 2.2 and binary 2.2 files read back to the same mesh") {
@@ -203,6 +204,7 @@ TEST_CASE("Gmsh-written binary 4.1, ASCII 2.2 and binary 2.2 files read back to 
     }
   }
   fs::remove(ours);
+  fs::remove(ours.string() + ".opt");
 }
 
 TEST_CASE("gmsh_call turns Gmsh failures into ExternalError") {
