@@ -1,3 +1,4 @@
+#include "core/file_name.hpp"
 #include "cli/tool.hpp"
 
 #include <omp.h>
@@ -61,7 +62,7 @@ nlohmann::json typed_option_value(const CLI::Option& opt, const std::vector<std:
 
 std::string default_report_path(const std::string& output) {
   const std::filesystem::path p(output);
-  if (p.extension() == ".msh") return std::filesystem::path(p).replace_extension(".json").string();
+  if (lower_extension(output) == ".msh") return std::filesystem::path(p).replace_extension(".json").string();
   return output + ".json";
 }
 
@@ -100,9 +101,11 @@ void Tool::output(const std::string& path) {
   const OutputTarget target = resolve_output(path);
   use_stdio(path, stdout_used_, "output");
   protect_output(path);
-  // a mesh output may get its Gmsh options file beside it (io/gmsh_options.hpp): refused
-  // before any work when that is an input, like the output itself
-  if (target.kind == OutputTarget::Kind::Regular && std::filesystem::path(path).extension() == ".msh")
+  // a mesh output may get its Gmsh options file beside it (io/gmsh_options.hpp; MSH is what a
+  // .msh name or a name without extension gets): refused before any work when that is an input,
+  // like the output itself
+  const std::string ext = lower_extension(path);
+  if (target.kind == OutputTarget::Kind::Regular && (ext == ".msh" || ext.empty()))
     protect_output(path + ".opt");
   outputs_.push_back(path);
   report_["outputs"].push_back(path);
@@ -119,8 +122,8 @@ void Tool::output(const std::string& path) {
 void Tool::output_mesh(const std::string& path) {
   output(path);  // its refusals first (an input, a missing folder, ...): they name the worse mistake
   const std::filesystem::path p(path);
-  const std::string ext = p.extension().string();
-  if (path != "-" && !ext.empty() && ext != ".msh" && ext != ".MSH") {
+  const std::string ext = lower_extension(path);
+  if (path != "-" && !ext.empty() && ext != ".msh") {
     const std::string stem = (p.parent_path() / p.stem()).string();
     throw InputError(path, name_ + " writes Gmsh MSH only: name the output " + stem +
                                ".msh (for ParaView or another format: meshconvert " + stem + ".msh -o " + path + ")");
@@ -147,8 +150,7 @@ void Tool::declare_report() {
   // a report named like a mesh (`--report keep.msh`) would overwrite that mesh with JSON (checked after
   // the refusals above, which name the worse mistake: an input, a missing folder)
   if (report_explicit_) {
-    std::string ext = std::filesystem::path(report_path_).extension().string();
-    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    const std::string ext = lower_extension(report_path_);
     if (ext == ".msh" || ext == ".vtu" || ext == ".vtk" || ext == ".geo" || ext == ".png")
       throw InputError(report_path_, "--report writes a JSON report, not a " + ext.substr(1) +
                                          " file: give it a .json name");

@@ -1,3 +1,4 @@
+#include "core/file_name.hpp"
 #include "io/vtu.hpp"
 
 #include <algorithm>
@@ -182,7 +183,7 @@ void write_vtu(const Mesh& mesh, const std::string& path) {
 }
 
 MeshFileFormat mesh_file_format(const std::string& path) {
-  const std::string ext = std::filesystem::path(path).extension().string();
+  const std::string ext = lower_extension(path);
   if (ext == ".vtu") return MeshFileFormat::Vtu;
   if (ext.empty() || ext == ".msh") return MeshFileFormat::Msh;
   throw InputError(path, "a mesh is written as .msh (MSH 4.1) or .vtu (VTK XML for ParaView), not '" + ext + "'");

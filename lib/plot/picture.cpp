@@ -1,3 +1,4 @@
+#include "core/file_name.hpp"
 #include "plot/picture.hpp"
 
 #include <algorithm>
@@ -15,8 +16,7 @@ namespace quadapt::plot {
 
 PictureFormat picture_format(const std::string& path) {
   if (path == "-") return PictureFormat::Svg;  // standard output
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower_extension(path);
   if (ext == ".svg") return PictureFormat::Svg;
   if (ext == ".png") return PictureFormat::Png;
   throw InputError(path, "unknown picture format '" + ext + "' (use .svg or .png)");

@@ -178,6 +178,23 @@ cp plain.msh out.msh.opt
 expect_exit 2 "out.msh.opt" dgsolve out.msh.opt -c case.json -p 1 -o out.msh
 [ ! -e out.msh ] || fail "dgsolve wrote out.msh before refusing out.msh.opt"
 same_bytes out.msh.opt plain.msh
+# the same for an output without an extension (MSH, so its options file is OUT.opt)
+cp plain.msh noext2.opt
+expect_exit 2 "noext2.opt" dgsolve noext2.opt -c case.json -p 1 -o noext2
+[ ! -e noext2 ] || fail "dgsolve wrote noext2 before refusing noext2.opt"
+same_bytes noext2.opt plain.msh
+# extensions in any case: sol.MSH is a mesh for every tool (meshconvert refused it while refine
+# accepted it), its report SOL.json; .VTU is ParaView's; --report K.MSH is refused like K.msh
+meshconvert -q sol.msh -o upper.MSH
+meshconvert -q upper.MSH -o /dev/null --require quads
+[ -s upper.json ] && [ ! -e upper.MSH.json ] || fail "upper.MSH's report is not upper.json"
+[ -s upper.MSH.opt ] || fail "meshconvert -o upper.MSH wrote no upper.MSH.opt (sol.msh has a DG field)"
+meshconvert -q sol.msh -o upper.VTU
+head -c 200 upper.VTU | grep -q "VTKFile" || fail "meshconvert -o upper.VTU did not write VTK XML"
+refine -q plain.msh --uniform -o r2.MSH
+[ -s r2.json ] || fail "refine -o r2.MSH: report not r2.json"
+expect_exit 2 "writes Gmsh MSH only" refine plain.msh --uniform -o r3.VTU
+expect_exit 2 "writes a JSON report, not a msh file" lpcvt frame.msh -o r4.msh --report keep.MSH
 # the outputs written, the report not (a full device): exit 1, "the outputs were written"
 if [ -w /dev/full ]; then
   expect_exit 1 "" meshconvert sol.msh -o full.msh --report /dev/full
