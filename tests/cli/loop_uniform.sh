@@ -59,6 +59,14 @@ grep -q "stopping after step-0: the DOF limit MAXDOFS=100" "$T/log-max.txt" || {
 rc=0; make --no-print-directory -f "$SRC/Makefile.cases" loop "${LOOP[@]}" BIN="$T/no-such-bin" OUT="$T/run-typo" > "$T/log-typo.txt" 2>&1 || rc=$?
 [ $rc -ne 0 ] && grep -q "BIN=$T/no-such-bin: no dgsolve there" "$T/log-typo.txt" || { cat "$T/log-typo.txt"; fail "typo'd BIN accepted"; }
 [ ! -e "$T/run-typo" ] || fail "typo'd BIN: OUT created"
+# a misspelt variable (METOD=bamg, STEP=1) was ignored: the loop ran lpcvt for 6 steps, exit 0.
+# Refused, every misspelling named, nothing created; `check` too; the environment passes
+rc=0; make --no-print-directory -f "$SRC/Makefile.cases" loop "${LOOP[@]}" METOD=bamg STEP=1 OUT="$T/run-typo2" > "$T/log-typo2.txt" 2>&1 || rc=$?
+[ $rc -ne 0 ] && grep -q "METOD=bamg STEP=1: not read by Makefile.cases" "$T/log-typo2.txt" || { cat "$T/log-typo2.txt"; fail "misspelt variables accepted"; }
+[ ! -e "$T/run-typo2" ] || fail "misspelt variables: OUT created"
+rc=0; "${MK[@]}" check "${LOOP[@]}" STEP=1 OUT="$T/run-typo3" > "$T/log-typo3.txt" 2>&1 || rc=$?
+[ $rc -ne 0 ] || fail "check accepted STEP=1"
+"${MK[@]}" check "${LOOP[@]}" OMP_NUM_THREADS=1 OUT="$T/run-typo3" > /dev/null || fail "check refused OMP_NUM_THREADS=1"
 
 # pictures again with another close-up window: drawn again (was: skipped, the close-up being newer
 # than its mesh); the same window again: not redrawn; a malformed window: refused
