@@ -83,8 +83,13 @@ case "$MODE" in
   *) die "unknown MODE '$MODE' (use feature or goal)" ;;
 esac
 [ -n "$CASE" ] || die "CASE is not set (a case file: --case examples/cases/sshock.json; with make: CASE=...)"
-if [ ! -f "$CASE" ] && [[ "$CASE" != */* ]] && [ -f "$root/examples/cases/${CASE%.json}.json" ]; then
-  CASE="$root/examples/cases/${CASE%.json}.json"   # short name: CASE=sshock
+if [ ! -f "$CASE" ] && [[ "$CASE" != */* ]]; then
+  # short name: CASE=sshock is ./sshock.json when that exists (your own case), else the shipped one
+  if [ -f "${CASE%.json}.json" ]; then
+    CASE="${CASE%.json}.json"
+  elif [ -f "$root/examples/cases/${CASE%.json}.json" ]; then
+    CASE="$root/examples/cases/${CASE%.json}.json"
+  fi
 fi
 if [ ! -f "$CASE" ]; then
   avail="$(cd "$root/examples/cases" 2>/dev/null && ls *.json 2>/dev/null | sed 's/\.json$//' | paste -sd ' ' || true)"
@@ -184,8 +189,18 @@ fi
 if [ "$PICTURES" = yes ] && ! command -v meshplot >/dev/null 2>&1; then
   echo "loop: note: meshplot not found; the run will have no mesh pictures" >&2
 fi
+# OUT: an existing directory, or a path mkdir -p can make (checked here so that `check` refuses
+# what the run would; nothing is created before the check passes)
+if [ -e "$OUT" ] && [ ! -d "$OUT" ]; then
+  die "cannot create OUT '$OUT': it exists and is not a directory"
+fi
+out_base="$OUT"
+while [ ! -e "$out_base" ]; do out_base="$(dirname "$out_base")"; done
+if [ ! -d "$out_base" ] || [ ! -w "$out_base" ]; then
+  die "cannot create OUT '$OUT': '$out_base' is not a writable directory"
+fi
 tools_dir="$(dirname "$(command -v dgsolve)")"
-[ "$CHECK_ONLY" = 1 ] && { echo "loop: inputs OK (tools: ${tools[*]} from $tools_dir)"; exit 0; }
+[ "$CHECK_ONLY" = 1 ] && { echo "loop: inputs OK (case $(cd "$(dirname "$CASE")" && pwd)/$(basename "$CASE"); tools: ${tools[*]} from $tools_dir)"; exit 0; }
 
 # OpenMP threads that wait sleep instead of spinning (docs/bench-dgsolve.md: with libgomp's
 # default the idle thread spins through the sequential ILU sweeps; 2.36 s instead of 1.28 s for
@@ -335,7 +350,7 @@ copy_into() {  # copy_into SRC DST: DST = a copy of SRC, atomically (the user's 
   mv -f "$tmp" "$2"
 }
 
-say "CASE=$(basename "$CASE") P=$P METHOD=$METHOD MODE=$MODE STEPS=$STEPS GROWTH=$GROWTH MAXDOFS=$MAXDOFS -> $OUT"
+say "CASE=$CASE P=$P METHOD=$METHOD MODE=$MODE STEPS=$STEPS GROWTH=$GROWTH MAXDOFS=$MAXDOFS -> $OUT"
 say "tools: $tools_dir ($tools_id)"
 mkdir -p "$OUT/step-0"
 START="$MESH"

@@ -96,6 +96,18 @@ grep -q 'P=9: the DG degree must be 1..8' <<<"$msg" || fail "check P=9: $msg"
 msg=$(mk P=8); grep -q 'inputs OK' <<<"$msg" || fail "check P=8"
 msg=$(mk P=8 MODE=goal) && fail "goal P=8 passed"
 grep -q 'must be 1..7 in goal mode' <<<"$msg" || fail "goal P=8: $msg"
+# CASE=NAME is ./NAME.json when that exists (a reviewer's own smooth.json lost to the shipped one,
+# and the log said only "CASE=smooth.json"); the check names the case file it resolved
+cp "$S/examples/cases/smooth.json" "$T/sshock.json"
+msg=$(cd "$T" && mk OUT="$T/r-local")
+grep -q "case $(cd "$T" && pwd)/sshock.json;" <<<"$msg" || fail "CASE=sshock with ./sshock.json: $msg"
+rm "$T/sshock.json"
+msg=$(cd "$T" && mk OUT="$T/r-local")
+grep -q "case $S/examples/cases/sshock.json;\|case .*/examples/cases/sshock.json;" <<<"$msg" || fail "CASE=sshock shipped: $msg"
+# check refuses the OUT the run would refuse (was: "inputs OK", then the loop exited 2)
+msg=$(mk OUT="$T/sq2.msh") && fail "check OUT=a file passed: $msg"
+grep -q "it exists and is not a directory" <<<"$msg" || fail "check OUT=a file: $msg"
+[ ! -e "$T/r-local" ] || fail "check created OUT"
 
 # --- loop warnings: a wrapped lpcvt that warns (exit 0) and one that exits 1 with a valid output
 mkdir "$T/bin"
