@@ -83,6 +83,23 @@ def readable_log_ticks(axis, lo, hi):
     axis.set_minor_formatter(NullFormatter())
 
 
+def die(msg):
+    """One line on stderr, exit 2 (docs/exit-codes.md), nothing written."""
+    print("convergence.py: " + msg, file=sys.stderr)
+    sys.exit(2)
+
+
+def check_output(path):
+    """Refuses, before any drawing, an output matplotlib cannot write: an unknown extension or a
+    missing folder (was: a Python traceback after the work, exit 1)."""
+    ext = os.path.splitext(path)[1].lower()
+    if ext not in (".png", ".svg", ".pdf"):
+        die("%s: a picture is written as .png, .svg or .pdf, not '%s'" % (path, ext))
+    folder = os.path.dirname(path) or "."
+    if not os.path.isdir(folder):
+        die("%s: no such folder '%s'" % (path, folder))
+
+
 def make_figure(argv):
     """Parses the command line and draws the figure; returns (fig, ax, output path)."""
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -95,6 +112,7 @@ def make_figure(argv):
     ap.add_argument("-o", "--output", required=True)
     ap.add_argument("runs", nargs="+", metavar="LABEL=CSV")
     a = ap.parse_args(argv)
+    check_output(a.output)
     measure = a.measure if a.measure != "auto" else ("functional_error" if a.mode == "goal" else "l2_error")
     rate = (2 * a.p + 1) if measure == "functional_error" else (a.p + 1)
 
@@ -103,7 +121,7 @@ def make_figure(argv):
     labels = set()
     for spec in a.runs:
         if "=" not in spec:
-            sys.exit("convergence.py: run '%s' is not LABEL=CSV" % spec)
+            die("run '%s' is not LABEL=CSV" % spec)
         label, path = spec.split("=", 1)
         labels.add(label)
         pts = read_curve(path, measure)
@@ -152,8 +170,13 @@ def make_figure(argv):
 def main():
     fig, _, output = make_figure(sys.argv[1:])
     tmp = "%s.tmp-%d%s" % (os.path.splitext(output)[0], os.getpid(), os.path.splitext(output)[1])
-    fig.savefig(tmp)
-    os.replace(tmp, output)
+    try:
+        fig.savefig(tmp)
+        os.replace(tmp, output)
+    except OSError as e:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        die("%s: cannot write: %s" % (output, e.strerror or e))
 
 
 if __name__ == "__main__":

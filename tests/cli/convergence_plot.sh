@@ -48,4 +48,10 @@ star = [l for l in ax.get_lines() if l.get_label() == "thesis lpcvt (final)"][0]
 assert list(star.get_xdata()) == [3.75e4] and list(star.get_ydata()) == [1.42e-5], (star.get_xdata(), star.get_ydata())
 print("convergence_plot: title ok; x tick labels", labels, "; thesis point (3.75e4, 1.42e-5)")
 PY
+# output mistakes: one line naming the path, exit 2, nothing written (was: a traceback, exit 1)
+for out in "$T/nodir/c.png" "$T/c.csv"; do
+  rc=0; err=$($PY "$S/scripts/plot/convergence.py" --p 2 -o "$out" "lpcvt=$run/convergence.csv" 2>&1) || rc=$?
+  [ $rc -eq 2 ] && [ "$(wc -l <<<"$err")" -eq 1 ] && grep -q "^convergence.py: $out: " <<<"$err" || { echo "FAIL: -o $out: exit $rc: $err" >&2; exit 1; }
+  [ ! -e "$out" ] || { echo "FAIL: -o $out written" >&2; exit 1; }
+done
 echo "convergence_plot: ok"
