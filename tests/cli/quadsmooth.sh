@@ -177,4 +177,12 @@ quadsmooth -q "$IN" --method shape -o "$T/bad3.msh" 2>"$T/err3"; rc3=$?
 set -e
 [ $rc3 = 2 ] || fail "--method shape without --frame: exit $rc3"
 [ ! -e "$T/bad3.msh" ] || fail "--method shape without --frame: output written"
+# a frame that does not cover the mesh (another domain's): a warning naming both files and the
+# count, in the report too (was silent: a reviewer's L-shape frame on a wider mesh, min angle 90 -> 42)
+python3 "$SRC/tests/cli/lpcvt_frame.py" "$T/small.msh" --n 8 --h1 0.02 --h2 0.02 --box 0 0.5 0 0.5
+quadsmooth "$IN" --frame "$T/small.msh" -o "$T/fsm.msh" 2>"$T/err4" || fail "frame not covering the mesh: exit $?"
+grep -q "warning: .* cells of $IN have their centroid outside $T/small.msh's background" "$T/err4" || fail "no coverage warning: $(cat "$T/err4")"
+python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['cells_outside_frame'] > 0, r['cells_outside_frame']" "$T/fsm.json" || fail "cells_outside_frame"
+quadsmooth "$IN" --frame "$T/frame.msh" -o "$T/fs2.msh" 2>"$T/err5"
+! grep -q "outside" "$T/err5" || fail "coverage warning with a covering frame: $(cat "$T/err5")"
 echo "quadsmooth: all checks passed"
