@@ -7,7 +7,9 @@ The runs of scripts/loop/run-loop.sh (Makefile.cases loop) on the same case: eac
 table against B's curve, log(error) interpolated linearly in log(DOFs) between B's two steps
 around A's DOF count (compare.py's interp_loglog; outside B's range: "-", no extrapolation). The error is the L2 error
 (--mode feature, the default) or |functional_error| (--mode goal). Prints a Markdown table and
-the geometric mean of A / B over the rows compared; exit 2 on a missing or malformed table.
+the geometric mean of A / B over the rows compared — a row both tables hold (the same DOFs and
+error: the start mesh the two loops share) is shown but not counted; exit 2 on a missing or
+malformed table or labels that are not two names.
 For the thesis's studies, scripts/loop/compare.py compares against the thesis's own figures.
 Python 3 standard library only.
 """
@@ -53,13 +55,20 @@ def main(argv):
     ap.add_argument("--mode", choices=("feature", "goal"), default="feature")
     ap.add_argument("--labels", default="A,B")
     o = ap.parse_args(argv)
-    la, lb = (o.labels.split(",") + ["B"])[:2]
+    labels = o.labels.split(",")
+    if len(labels) != 2 or not all(labels):
+        die("--labels '%s': give two names, A's and B's, e.g. --labels lpcvt,bamg" % o.labels)
+    la, lb = labels
     column = "l2_error" if o.mode == "feature" else "functional_error"
     A, B = curve(o.a, column), curve(o.b, column)
     print("| DOFs | %s %s | %s %s at those DOFs | %s / %s |" % (la, column, lb, column, la, lb))
     print("|---|---|---|---|")
     ratios = []
+    shared = set(B)
     for n, e in A:
+        if (n, e) in shared:  # the same DOFs and error: the start mesh both loops share
+            print("| %d | %.3e | %.3e | same step (not in the mean) |" % (n, e, e))
+            continue
         eb, flag = interp_loglog(B, n)
         if eb is None or flag:  # off B's curve: no extrapolation here
             print("| %d | %.3e | - | - |" % (n, e))
