@@ -84,6 +84,12 @@ else
   echo "note: rsvg-convert missing, PNG part skipped"
 fi
 
+# a window off the mesh: the picture is empty, and said so (was "wrote x.svg (0 cells)" only)
+meshplot sq.msh --window 5,6,5,6 -o off.svg 2>off.txt || fail "window off the mesh: exit $?"
+grep -q "warning: --window 5,6,5,6 holds none of sq.msh's cells: off.svg is empty" off.txt || { cat off.txt >&2; fail "no empty-window warning"; }
+meshplot sq.msh --window 0,0.5,0,0.5 -o on.svg 2>on.txt
+! grep -q "holds none" on.txt || fail "empty-window warning on a window inside the mesh"
+
 # 4. bad input: one-line message naming the file and the problem, exit 2, nothing written
 expect_fail() {  # expect_fail PATTERN ARGS...
   local pat="$1"; shift
