@@ -1,4 +1,3 @@
-#include "core/file_name.hpp"
 #include "cli/tool.hpp"
 
 #include <omp.h>
@@ -15,6 +14,7 @@
 #include "cli/provenance.hpp"
 #include "cli/option_ranges.hpp"
 #include "core/atomic_file.hpp"
+#include "core/file_name.hpp"
 #include "core/path_guard.hpp"
 #include "core/signal_cleanup.hpp"
 

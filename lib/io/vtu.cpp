@@ -1,4 +1,3 @@
-#include "core/file_name.hpp"
 #include "io/vtu.hpp"
 
 #include <algorithm>
@@ -8,6 +7,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/file_name.hpp"
 #include "fem/basis.hpp"
 #include "io/msh.hpp"
 

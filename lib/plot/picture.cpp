@@ -1,4 +1,3 @@
-#include "core/file_name.hpp"
 #include "plot/picture.hpp"
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include "core/atomic_file.hpp"
 #include "core/child_process.hpp"
 #include "core/error.hpp"
+#include "core/file_name.hpp"
 
 namespace fs = std::filesystem;
 
