@@ -219,7 +219,6 @@ fi
 # ------------------------------------------------------------------ run directory
 # one line on failure (mkdir's own message was printed first): why, from mkdir's, without its prefix
 if ! err="$(mkdir -p "$OUT" 2>&1)"; then
-  [ -e "$OUT" ] && [ ! -d "$OUT" ] && err="it exists and is not a directory"
   die "cannot create OUT '$OUT': ${err##*: }"
 fi
 OUT="$(cd "$OUT" && pwd)"
