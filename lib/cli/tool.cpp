@@ -4,7 +4,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <cctype>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>

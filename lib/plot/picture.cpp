@@ -1,7 +1,5 @@
 #include "plot/picture.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <filesystem>
 #include <fstream>
 
