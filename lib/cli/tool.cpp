@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <cstdlib>
@@ -146,11 +147,13 @@ void Tool::declare_report() {
   else
     protect_output(report_path_, "the report written beside the output " + (outputs_.empty() ? std::string() : outputs_.front()),
                    "give --report another path, or -o another name");
-  // a report named like a mesh (`--report keep.msh`) would overwrite that mesh with JSON (checked after
-  // the refusals above, which name the worse mistake: an input, a missing folder)
+  // a report named like a file the toolkit reads or writes (`--report keep.msh`, a picture, the loop's
+  // table, Gmsh's options) would overwrite it with JSON (checked after the refusals above, which name
+  // the worse mistake: an input, a missing folder)
   if (report_explicit_) {
     const std::string ext = lower_extension(report_path_);
-    if (ext == ".msh" || ext == ".vtu" || ext == ".vtk" || ext == ".geo" || ext == ".png")
+    static const char* const kNotReports[] = {".msh", ".vtu", ".vtk", ".geo", ".png", ".svg", ".pdf", ".csv", ".opt"};
+    if (std::find(std::begin(kNotReports), std::end(kNotReports), ext) != std::end(kNotReports))
       throw InputError(report_path_, "--report writes a JSON report, not a " + ext.substr(1) +
                                          " file: give it a .json name");
   }

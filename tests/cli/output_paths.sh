@@ -195,6 +195,13 @@ refine -q plain.msh --uniform -o r2.MSH
 [ -s r2.json ] || fail "refine -o r2.MSH: report not r2.json"
 expect_exit 2 "writes Gmsh MSH only" refine plain.msh --uniform -o r3.VTU
 expect_exit 2 "writes a JSON report, not a msh file" lpcvt frame.msh -o r4.msh --report keep.MSH
+# a picture, a table or Gmsh options are not reports either (--report pic.svg overwrote the picture)
+echo '<svg/>' > pic.svg
+for f in pic.svg tab.csv o.msh.opt; do
+  expect_exit 2 "writes a JSON report, not a ${f##*.} file" lpcvt frame.msh -o r5.msh --report $f
+  [ ! -e r5.msh ] || fail "--report $f: wrote r5.msh"
+done
+[ "$(cat pic.svg)" = '<svg/>' ] || fail "--report pic.svg changed pic.svg"
 # the outputs written, the report not (a full device): exit 1, "the outputs were written"
 if [ -w /dev/full ]; then
   expect_exit 1 "" meshconvert sol.msh -o full.msh --report /dev/full
