@@ -2,11 +2,13 @@
 // functional on the degree-(p+1) space (thesis eqs. 2.25-2.27). See docs/adjoint.md.
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "adjoint/dwr.hpp"
 #include "case/case.hpp"
+#include "case/solved_case.hpp"
 #include "cli/tool.hpp"
 #include "dg/degree.hpp"
 #include "core/format.hpp"
@@ -26,7 +28,8 @@ int main(int argc, char** argv) {
             "functional_exact, functional_error (|J(u) - J_H(u_H)|), functional_error_signed, "
             "functional_error_estimate (-psi^T R, the estimate of J(u) - J_H(u_H), eq. 2.26), sum_eta, "
             "effectivity (estimate / signed error), functional_corrected (J_H + estimate), the solver and "
-            "the wall time of every phase. Use the same --penalty as dgsolve.");
+            "the wall time of every phase. The case and the penalty factor are those SOL was solved with "
+            "(dgsolve records them in SOL): another PDE is refused, the penalty taken from SOL unless given.");
   std::string in, out, case_path, field = "u", solver = "auto", ordering = "auto";
   AdjointOptions opt;
   bool no_fallback = false;
@@ -55,11 +58,17 @@ int main(int argc, char** argv) {
                  "upwind graph, else the cells sorted along -c, or along y when c = 0; independent of the "
                  "file's cell order) or mesh (the file's order)")
       ->capture_default_str();
-  app.add_option("--penalty", opt.dg.penalty_factor,
-                 "SIPG penalty factor, as given to dgsolve (the fine space takes factor p/(p+2) on interior faces, "
-                 "the primal's sigma; keep it >= 5, docs/adjoint.md)")
-      ->capture_default_str();
+  CLI::Option* penalty_option =
+      app.add_option("--penalty", opt.dg.penalty_factor,
+                     "SIPG penalty factor, as given to dgsolve (the fine space takes factor p/(p+2) on interior faces, "
+                     "the primal's sigma; keep it >= 5, docs/adjoint.md). Default: the factor SOL records "
+                     "($SolvedCase), else 20");
 
+  const auto as_typed = [](double v) {  // 0.5, not 5.000e-01
+    std::ostringstream f;
+    f << v;
+    return f.str();
+  };
   return tool.run(argc, argv, [&] {
     auto start = std::chrono::steady_clock::now();
     tool.input(in);
@@ -76,16 +85,6 @@ int main(int argc, char** argv) {
       throw InputError("", "--ordering '" + ordering + "': expected auto, flow or mesh");
     opt.fallback_direct = !no_fallback;
     tool.option("solver", linear_solver_name(opt.solver.kind));
-    // a small factor makes the fine space's penalty too weak for its indicators (a reviewer's
-    // --penalty 0.5 on a solution solved at 20: estimate 0.24 for a true error 9e-9, exit 0)
-    if (opt.dg.penalty_factor < 5) {
-      std::ostringstream f;  // as typed: 0.5, not 5.000e-01
-      f << opt.dg.penalty_factor;
-      tool.log("warning: --penalty " + f.str() +
-               " is below 5: the indicators lose their meaning (docs/adjoint.md); give the factor dgsolve "
-               "solved with (default 20)");
-    }
-
     Mesh mesh;
     Case cs;
     Eigen::VectorXd U;
@@ -101,7 +100,30 @@ int main(int argc, char** argv) {
       if (!cs.has_functional())
         throw InputError(case_path, "the case has no functional; add \"functional\": {\"boundary\": NAME}");
       check_case_boundaries(cs, mesh);
+      if (!mesh.solved_case.empty())
+        if (const auto diff = solved_case_differences(mesh.solved_case, cs, in); !diff.empty()) {
+          std::string keys;
+          for (const std::string& k : diff) keys += (keys.empty() ? "" : ", ") + k;
+          throw InputError(case_path, "is not the PDE " + in + " was solved with (" + keys +
+                                          " differ): the DWR needs the primal's case; give the case dgsolve "
+                                          "solved with (adding a \"functional\" to it is fine)");
+        }
+      if (const auto solved = mesh.solved_case.empty() ? std::nullopt : solved_penalty(mesh.solved_case, in)) {
+        if (penalty_option->count() == 0)
+          opt.dg.penalty_factor = *solved;
+        else if (opt.dg.penalty_factor != *solved)
+          tool.log("warning: --penalty " + as_typed(opt.dg.penalty_factor) + " is not the factor " + in +
+                   " was solved with (" + as_typed(*solved) +
+                   "): the fine space's penalty is not the primal's; leave --penalty out to take SOL's");
+      }
     }
+    tool.option("penalty", opt.dg.penalty_factor);
+    // a small factor makes the fine space's penalty too weak for its indicators (a reviewer's
+    // --penalty 0.5 on a solution solved at 20: estimate 0.24 for a true error 9e-9, exit 0)
+    if (opt.dg.penalty_factor < 5)
+      tool.log("warning: --penalty " + as_typed(opt.dg.penalty_factor) +
+               " is below 5: the indicators lose their meaning (docs/adjoint.md); give the factor dgsolve "
+               "solved with (default 20)");
     // accepted (the thesis's S-shock and boundary layer with diffusion do it), but rarely meant
     if (cs.is_dirichlet(cs.functional_boundary))
       tool.log("warning: the functional boundary '" + cs.functional_boundary + "' has Dirichlet data in " + case_path +

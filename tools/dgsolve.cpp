@@ -4,6 +4,7 @@
 #include <string>
 
 #include "case/case.hpp"
+#include "case/solved_case.hpp"
 #include "cli/tool.hpp"
 #include "dg/degree.hpp"
 #include "core/format.hpp"
@@ -87,6 +88,7 @@ int main(int argc, char** argv) {
       auto ph = tool.phase("write");
       mesh.clear_fields();
       mesh.set_field(make_dg_field(r.U, r.p, mesh.num_cells(), "u"));
+      mesh.solved_case = solved_case_record(cs, opt.dg.penalty_factor);  // adjoint: the same PDE and penalty
       write_msh(mesh, out);
     }
     rep["case"] = case_path;

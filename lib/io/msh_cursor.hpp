@@ -77,19 +77,24 @@ class Cursor {
     return v;
   }
 
-  /// The rest of the current line (after leading blanks and newlines), trimmed; a quoted
-  /// string loses its quotes.
-  std::string quoted(std::string_view what) {
+  /// The rest of the current line (after leading blanks and newlines), trimmed.
+  std::string line(std::string_view what) {
     skip_ws();
     if (p_ >= end_) truncated(what);
     const char* s = p_;
     while (p_ < end_ && *p_ != '\n') ++p_;
-    std::string_view line(s, static_cast<size_t>(p_ - s));
-    while (!line.empty() && is_space(line.back())) line.remove_suffix(1);
-    size_t q1 = line.find('"');
-    if (q1 == std::string_view::npos) return std::string(line);
-    size_t q2 = line.find('"', q1 + 1);
-    return std::string(line.substr(q1 + 1, q2 == std::string_view::npos ? std::string_view::npos : q2 - q1 - 1));
+    std::string_view t(s, static_cast<size_t>(p_ - s));
+    while (!t.empty() && is_space(t.back())) t.remove_suffix(1);
+    return std::string(t);
+  }
+
+  /// The rest of the current line, as line(), where a quoted string loses its quotes.
+  std::string quoted(std::string_view what) {
+    const std::string l = line(what);
+    const size_t q1 = l.find('"');
+    if (q1 == std::string::npos) return l;
+    const size_t q2 = l.find('"', q1 + 1);
+    return l.substr(q1 + 1, q2 == std::string::npos ? std::string::npos : q2 - q1 - 1);
   }
 
   /// True when the next token is `word` (nothing read). Safe between binary blocks too: their

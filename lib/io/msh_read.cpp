@@ -106,6 +106,7 @@ class MshReader {
       else if (name == "ElementNodeData") read_view(ViewKind::ElementNode);
       else if (name == "InterpolationScheme") read_interpolation_scheme();
       else if (name == "FrameConvention") read_frame_convention();
+      else if (name == "SolvedCase") read_solved_case();
       else if (name.rfind("End", 0) == 0) c_.fail("unexpected $" + name + " (section without a start)");
       else c_.skip_section(name);
     }
@@ -503,6 +504,13 @@ class MshReader {
     if (t.empty() || t[0] == '$') c_.fail("empty $FrameConvention section");
     m_.frame_convention = std::string(t);
     c_.expect_end("FrameConvention");
+  }
+
+  void read_solved_case() {
+    std::string t = c_.line("solved case");
+    if (t.empty() || t[0] == '$') c_.fail("empty $SolvedCase section");
+    m_.solved_case = std::move(t);
+    c_.expect_end("SolvedCase");
   }
 
   void read_interpolation_scheme() {

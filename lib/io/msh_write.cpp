@@ -321,6 +321,7 @@ void write_msh(const Mesh& m, std::ostream& os) {
   }
   // Gmsh and other readers skip sections they do not know (MSH 4.1 format description).
   if (!m.frame_convention.empty()) o << "$FrameConvention\n" << m.frame_convention << "\n$EndFrameConvention\n";
+  if (!m.solved_case.empty()) o << "$SolvedCase\n" << m.solved_case << "\n$EndSolvedCase\n";
   o.flush();
 }
 

@@ -43,6 +43,7 @@ Mesh canonical_order(const Mesh& m, Renumbering* r) {
   out.domain_name = m.domain_name;
   out.domain_tag = m.domain_tag;
   out.frame_convention = m.frame_convention;
+  out.solved_case = m.solved_case;
   out.nodes.resize(static_cast<size_t>(nn));
   for (int i = 0; i < nn; ++i) out.nodes[i] = m.nodes[old_node[i]];
   out.cells.resize(static_cast<size_t>(nc));

@@ -70,6 +70,10 @@ struct Mesh {
   /// $FrameConvention, one word; empty when the file has none, e.g. PHiLiP's). Interpreted by
   /// frame/frame.hpp only; travels with the fields and is cleared with them.
   std::string frame_convention;
+  /// The PDE the solution field was solved with (section $SolvedCase, one line of JSON written
+  /// by dgsolve: case/solved_case.hpp; empty when the file has none). Travels with the fields
+  /// and is cleared with them.
+  std::string solved_case;
 
   int num_nodes() const { return static_cast<int>(nodes.size()); }
   int num_cells() const { return static_cast<int>(cells.size()); }
@@ -100,7 +104,12 @@ struct Mesh {
   void set_field(CellField f);
   void set_field(CellNodeField f);
   /// Removes every field (e.g. before writing a remeshed geometry).
-  void clear_fields() { cell_fields.clear(); cell_node_fields.clear(); frame_convention.clear(); }
+  void clear_fields() {
+    cell_fields.clear();
+    cell_node_fields.clear();
+    frame_convention.clear();
+    solved_case.clear();
+  }
   /// For messages: the fields' names, cell fields first, node fields marked "(node field)"
   /// ("p, theta, u (node field)"); "none" when there are none.
   std::string field_list() const;

@@ -107,14 +107,49 @@ expect_fail "inlet.json.*'inlet'" "$T/sol1.msh" -c "$T/inlet.json"
 expect_fail "no DG solution field 'v'" "$T/sol1.msh" -c "$T/smooth.json" --field v
 expect_fail "unknown linear solver" "$T/sol1.msh" -c "$T/smooth.json" --solver magic
 expect_fail "ordering" "$T/sol1.msh" -c "$T/smooth.json" --ordering sideways
+# a case whose PDE is not the one the solution was solved with ($SolvedCase, written by dgsolve):
+# refused, naming what differs (before: exit 0 and a meaningless estimate); the same PDE written
+# otherwise, or with the functional added after the solve, is accepted
+grep -q '^\$SolvedCase$' "$T/sol1.msh" || fail "dgsolve wrote no \$SolvedCase"
+sed 's/"advection": \[1.0, -0.7\]/"advection": [1.0, -0.6]/' "$T/smooth.json" >"$T/other.json"
+grep -q -- '-0.6' "$T/other.json" || fail "test setup: other.json"
+expect_fail "other.json: is not the PDE .*sol1.msh was solved with (advection differ)" "$T/sol1.msh" -c "$T/other.json"
+sed 's/, "functional": {"boundary": "right"}//' "$T/smooth.json" >"$T/solve-only.json"
+grep -q functional "$T/solve-only.json" && fail "test setup: solve-only.json"
+dgsolve -q "$T/sq8.msh" -c "$T/solve-only.json" -p 1 -o "$T/sol1-nofun.msh"
+sed 's/exp(x) + 0.5/exp(x)+0.5/; s/"smooth"/"renamed"/' "$T/smooth.json" >"$T/respaced.json"
+adjoint -q "$T/sol1-nofun.msh" -c "$T/respaced.json" -o "$T/later.msh" 2>"$T/errl" || fail "functional added after the solve refused: $(cat "$T/errl")"
+# a solution from elsewhere (no $SolvedCase) is accepted as before
+sed '/^\$SolvedCase$/,/^\$EndSolvedCase$/d' "$T/sol1.msh" >"$T/sol1-bare.msh"
+grep -q SolvedCase "$T/sol1-bare.msh" && fail "test setup: sol1-bare.msh"
+adjoint -q "$T/sol1-bare.msh" -c "$T/other.json" -o "$T/bare-dwr.msh" 2>"$T/errb" || fail "a solution without \$SolvedCase refused: $(cat "$T/errb")"
 # a functional on a boundary with Dirichlet data: accepted, with a warning naming the boundary and
 # the case (a reviewer's goal loop refined only the boundary mismatch, silently); none otherwise
 sed 's/"dirichlet": \["left", "top", "bottom"\]/"dirichlet": ["left", "top", "bottom", "right"]/' "$T/smooth.json" >"$T/dirfun-case.json"
 grep -q '"right"\]' "$T/dirfun-case.json" || fail "test setup: dirfun.json"
-adjoint "$T/sol1.msh" -c "$T/dirfun-case.json" -o "$T/dirfun.msh" 2>"$T/errw" || fail "functional on a Dirichlet side refused: $(cat "$T/errw")"
+dgsolve -q "$T/sq8.msh" -c "$T/dirfun-case.json" -p 1 -o "$T/sol1-dirfun.msh"
+adjoint "$T/sol1-dirfun.msh" -c "$T/dirfun-case.json" -o "$T/dirfun.msh" 2>"$T/errw" || fail "functional on a Dirichlet side refused: $(cat "$T/errw")"
 grep -q "warning: the functional boundary 'right' has Dirichlet data in .*dirfun-case.json" "$T/errw" || fail "no warning: $(cat "$T/errw")"
 adjoint "$T/sol1.msh" -c "$T/smooth.json" -o "$T/nowarn.msh" 2>"$T/errw2"
 if grep -qi warning "$T/errw2"; then fail "a warning without Dirichlet data on the functional boundary: $(cat "$T/errw2")"; fi
+# the penalty dgsolve solved with is recorded in SOL and is adjoint's default (before: 20 whatever
+# the solve used; on sshock p = 1 solved at 50, sum_eta 1.7e-4 for a true error 1.6e-6); another
+# --penalty is taken, with a warning
+dgsolve -q "$T/sq8.msh" -c "$T/smooth.json" -p 1 --penalty 50 -o "$T/sol50.msh"
+adjoint "$T/sol50.msh" -c "$T/smooth.json" -o "$T/dwr50.msh" 2>"$T/err50" || fail "adjoint on sol50: $(cat "$T/err50")"
+if grep -qi warning "$T/err50"; then fail "a warning with SOL's own penalty: $(cat "$T/err50")"; fi
+adjoint -q "$T/sol50.msh" -c "$T/smooth.json" --penalty 50 -o "$T/dwr50e.msh"
+adjoint "$T/sol50.msh" -c "$T/smooth.json" --penalty 20 -o "$T/dwr50w.msh" 2>"$T/err20" || fail "--penalty 20 on sol50 refused"
+grep -q "warning: --penalty 20 is not the factor .*sol50.msh was solved with (50)" "$T/err20" || fail "no penalty-mismatch warning: $(cat "$T/err20")"
+python3 - "$T" <<'PY'
+import json, sys
+t = sys.argv[1]
+d, e, w = (json.load(open(t + "/" + n + ".json")) for n in ("dwr50", "dwr50e", "dwr50w"))
+assert d["options"]["penalty"] == 50 and w["options"]["penalty"] == 20, (d["options"], w["options"])
+assert d["sum_eta"] == e["sum_eta"] and d["functional_error_estimate"] == e["functional_error_estimate"], "default is not SOL's penalty"
+assert 0.8 <= d["effectivity"] <= 1.25, d["effectivity"]
+assert w["sum_eta"] != d["sum_eta"], "--penalty 20 ignored"
+PY
 # a penalty factor below 5 (the solution was solved at 20): a warning naming the remedy
 adjoint "$T/sol1.msh" -c "$T/smooth.json" -o "$T/pen.msh" --penalty 0.5 2>"$T/errp" || fail "--penalty 0.5 refused: $(cat "$T/errp")"
 grep -q "warning: --penalty 0.5.* is below 5" "$T/errp" || fail "no penalty warning: $(cat "$T/errp")"

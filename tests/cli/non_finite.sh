@@ -9,9 +9,12 @@ S=$QUADAPT_SOURCE_DIR
 in_temp_dir
 cp "$E/meshes/square16.msh" m.msh
 dgsolve -q m.msh -c "$E/cases/smooth.json" -p 1 -o sol.msh
+# adjoint refuses a case other than the solve's ($SolvedCase); a solution without the record (from
+# another program) reaches the finiteness check, which is what is tested here
+sed '/^\$SolvedCase$/,/^\$EndSolvedCase$/d' sol.msh > sol-bare.msh
 for ex in 'log(x-2)' '1/(x-x)' 'sqrt(x-0.5)'; do
   printf '{"exact": "%s", "advection": [1, 0.5], "functional": {"boundary": "right"}}\n' "$ex" > bad.json
-  expect_exit 2 "bad.json: " adjoint -q sol.msh -c bad.json -o a.msh
+  expect_exit 2 "bad.json: " adjoint -q sol-bare.msh -c bad.json -o a.msh
   case "$ERR" in *"not finite"*) ;; *) fail "adjoint: $ERR" ;; esac
   expect_exit 2 "bad.json: " dgsolve -q m.msh -c bad.json -p 1 -o d.msh
   case "$ERR" in *"not finite"*) ;; *) fail "dgsolve: $ERR" ;; esac

@@ -33,6 +33,8 @@ inline void check_same_mesh(const Mesh& a, const Mesh& b) {
   }
   CHECK(a.domain_name == b.domain_name);
   CHECK(a.domain_tag == b.domain_tag);
+  CHECK(a.frame_convention == b.frame_convention);
+  CHECK(a.solved_case == b.solved_case);
   REQUIRE(a.cell_fields.size() == b.cell_fields.size());
   for (size_t f = 0; f < a.cell_fields.size(); ++f) {
     const CellField &x = a.cell_fields[f], &y = b.cell_fields[f];

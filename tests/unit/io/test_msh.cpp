@@ -406,3 +406,24 @@ $EndElements
   for (const auto& g : m.groups) tags.insert(g.tag);
   CHECK(tags == std::set<int>{1, 2, 2147483647});
 }
+
+TEST_CASE("$SolvedCase: one line of JSON, blanks inside kept, travels with the fields and is cleared with them") {
+  Mesh m = make_structured_quads(2, 2);
+  CellNodeField u{"u", 1, 4, 1, {}};
+  for (int c = 0; c < 4; ++c)
+    for (int k = 0; k < 4; ++k) u.values.push_back(c + 0.1 * k);
+  m.set_field(u);
+  m.solved_case = R"({"exact":"a b","neumann":{}})";  // blanks inside a string must survive
+  const std::string text = to_text(m);
+  CHECK(text.find("$SolvedCase\n{\"exact\":\"a b\",\"neumann\":{}}\n$EndSolvedCase\n") != std::string::npos);
+  Mesh r = from_text(text);
+  CHECK(r.solved_case == m.solved_case);
+  test::check_same_mesh(m, r);
+  CHECK(to_text(r) == text);
+  r.clear_fields();
+  CHECK(r.solved_case.empty());
+  CHECK(to_text(r).find("SolvedCase") == std::string::npos);
+  CHECK(error_of("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$SolvedCase\n$EndSolvedCase\n").find("empty $SolvedCase") !=
+        std::string::npos);
+  CHECK(error_of("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$SolvedCase\n{}\n").find("bad.msh: $SolvedCase") != std::string::npos);
+}
