@@ -1,4 +1,5 @@
 // read_msh: Gmsh MSH 4.1 and 2.2, ASCII and binary -> Mesh (see io/msh.hpp for the contract).
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -128,6 +129,7 @@ class MshReader {
   std::vector<std::pair<long long, std::string>> curve_names_;  // dim-1 physical names, in order
   std::map<long long, std::string> surface_names_;
   std::map<std::pair<int, long long>, long long> entity_phys_;  // (dim, entity) -> first physical tag
+  std::map<long long, std::vector<long long>> curve_extra_phys_;  // curve entity -> its other physical tags
   std::unordered_map<long long, int> node_index_;
   std::unordered_map<long long, int> cell_index_;
   std::vector<long long> cell_tags_;
@@ -223,6 +225,7 @@ class MshReader {
         for (long long k = 0; k < nphys; ++k) {
           long long p = c_.any_int("physical tag");
           if (k == 0) first = p;
+          else if (dim == 1) curve_extra_phys_[tag].push_back(p);
         }
         if (dim > 0) {
           const long long nb = bounded(c_.any_size("number of bounding entities"), "number of bounding entities");
@@ -528,24 +531,75 @@ class MshReader {
     c_.expect_end("InterpolationScheme");
   }
 
+  /// "7 ('outflow')" / "7" for messages.
+  std::string physical_label(long long tag) const {
+    for (const auto& [t, name] : curve_names_)
+      if (t == tag) return std::to_string(tag) + " ('" + name + "')";
+    return std::to_string(tag);
+  }
+
+  /// A physical tag is stored as an int (Mesh::BoundaryGroup::tag, domain_tag): one beyond
+  /// 1..INT_MAX is refused, not wrapped (a tag 2^31 + 5 became -2147483643).
+  void check_physical_tag(long long tag, const char* what) const {
+    if (tag < 1 || tag > std::numeric_limits<int>::max())
+      c_.fail(std::string(what) + " " + std::to_string(tag) + " is out of range (1.." +
+              std::to_string(std::numeric_limits<int>::max()) + "): renumber the physical group");
+  }
+
+  /// quadapt gives each boundary edge one group: a curve in two physical groups (4.1: an entity
+  /// with two tags; 2.2: the same line written once per group) would silently lose one of them —
+  /// a Dirichlet condition or the functional's boundary. Refused, naming both.
+  void check_one_group_per_edge() {
+    for (const RawLine& l : lines_) {
+      auto it = curve_extra_phys_.find(l.entity);
+      if (l.phys != 0 && it != curve_extra_phys_.end())
+        c_.fail("curve " + std::to_string(l.entity) + " is in physical groups " + physical_label(l.phys) + " and " +
+                physical_label(it->second.front()) +
+                ": quadapt gives each boundary edge one group; keep one Physical Curve per curve");
+    }
+    std::map<std::pair<int, int>, long long> seen;  // sorted end nodes -> group key of the first line
+    for (const RawLine& l : lines_) {
+      const auto key = std::minmax(l.a, l.b);
+      const long long group = l.phys != 0 ? l.phys : -l.entity;
+      auto [it, fresh] = seen.emplace(key, group);
+      if (!fresh && it->second != group) {
+        const auto label = [&](long long g) { return g > 0 ? "physical group " + physical_label(g) : "curve " + std::to_string(-g); };
+        std::ostringstream e;
+        e.precision(6);
+        e << "the boundary edge (" << m_.nodes[l.a].x() << ", " << m_.nodes[l.a].y() << ") - (" << m_.nodes[l.b].x()
+          << ", " << m_.nodes[l.b].y() << ") is in " << label(it->second) << " and in " << label(group)
+          << " (one curve in two physical groups?): quadapt gives each boundary edge one group; keep one Physical "
+             "Curve per curve";
+        c_.fail(e.str());
+      }
+    }
+  }
+
   void build_groups() {
+    check_one_group_per_edge();
     // Boundary groups: declared dim-1 physical names first, then unnamed keys in file order.
     std::map<std::pair<int, long long>, int> group_of;  // (0 = physical, 1 = entity), tag
     std::vector<char> by_entity;
     for (const auto& [tag, name] : curve_names_) {
+      check_physical_tag(tag, "physical tag");
       if (group_of.count({0, tag})) continue;
       group_of[{0, tag}] = static_cast<int>(m_.groups.size());
       m_.groups.push_back({static_cast<int>(tag), name});
       by_entity.push_back(0);
     }
+    std::set<std::pair<int, int>> have;  // a line written twice in one group is one boundary edge
     for (const RawLine& l : lines_) {
+      if (!have.insert(std::minmax(l.a, l.b)).second) continue;
       std::pair<int, long long> k = l.phys != 0 ? std::make_pair(0, l.phys) : std::make_pair(1, l.entity);
       auto it = group_of.find(k);
       int g;
       if (it == group_of.end()) {
+        if (k.first == 0) check_physical_tag(k.second, "the physical tag of a boundary line");
         g = static_cast<int>(m_.groups.size());
         group_of[k] = g;
-        m_.groups.push_back({static_cast<int>(k.second), ""});
+        // an entity tag beyond an int gets a free tag below (t <= 0)
+        const bool fits = k.second >= 1 && k.second <= std::numeric_limits<int>::max();
+        m_.groups.push_back({fits ? static_cast<int>(k.second) : 0, ""});
         by_entity.push_back(k.first == 1);
       } else {
         g = it->second;
@@ -561,15 +615,45 @@ class MshReader {
       if (side[be.group].empty() && one_side[be.group]) side[be.group] = s;
       if (s.empty() || s != side[be.group]) one_side[be.group] = 0;
     }
+    // Several unnamed groups on one side (a side made of two curves in a file without physical
+    // groups) all take the side's name: merged into the first (before, the second became
+    // boundary_<tag>, and a case's "left" covered half of x = 0).
+    std::vector<int> merged_into(m_.groups.size(), -1);
+    std::map<std::string, int> side_group;  // side name -> the unnamed group that took it
     for (size_t g = 0; g < m_.groups.size(); ++g) {
       if (!m_.groups[g].name.empty()) continue;
       std::string name;
-      if (square && one_side[g] && !side[g].empty() && m_.find_group(side[g]) < 0) name = side[g];
+      if (square && one_side[g] && !side[g].empty()) {
+        if (m_.find_group(side[g]) < 0) {
+          name = side[g];
+          side_group[name] = static_cast<int>(g);
+        } else if (auto it = side_group.find(side[g]); it != side_group.end()) {
+          merged_into[g] = it->second;
+          m_.groups[g].name = side[g];  // (removed below)
+          continue;
+        }
+      }
       if (name.empty()) {
         name = "boundary_" + std::to_string(m_.groups[g].tag);
         for (int k = 2; m_.find_group(name) >= 0; ++k) name = "boundary_" + std::to_string(m_.groups[g].tag) + "_" + std::to_string(k);
       }
       m_.groups[g].name = name;
+    }
+    if (std::any_of(merged_into.begin(), merged_into.end(), [](int t) { return t >= 0; })) {
+      std::vector<int> index(m_.groups.size());
+      std::vector<BoundaryGroup> kept;
+      std::vector<char> kept_by_entity;
+      for (size_t g = 0; g < m_.groups.size(); ++g)
+        if (merged_into[g] < 0) {
+          index[g] = static_cast<int>(kept.size());
+          kept.push_back(m_.groups[g]);
+          kept_by_entity.push_back(by_entity[g]);
+        }
+      for (size_t g = 0; g < m_.groups.size(); ++g)
+        if (merged_into[g] >= 0) index[g] = index[merged_into[g]];
+      for (BoundaryEdge& be : m_.boundary) be.group = index[be.group];
+      m_.groups = std::move(kept);
+      by_entity = std::move(kept_by_entity);
     }
     // Entity-keyed groups keep the entity tag as physical tag unless a physical group has it.
     std::set<int> used;
@@ -587,6 +671,7 @@ class MshReader {
       used.insert(t);
     }
     if (domain_phys_ != 0) {
+      check_physical_tag(domain_phys_, "the physical tag of the surface");
       m_.domain_tag = static_cast<int>(domain_phys_);
       auto it = surface_names_.find(domain_phys_);
       if (it != surface_names_.end()) m_.domain_name = it->second;

@@ -1,6 +1,8 @@
 // read_msh / write_msh: exact round trips, golden files, MSH 2.2, PHiLiP's files, bad input.
 #include <doctest/doctest.h>
 
+#include <array>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -426,4 +428,99 @@ TEST_CASE("$SolvedCase: one line of JSON, blanks inside kept, travels with the f
   CHECK(error_of("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$SolvedCase\n$EndSolvedCase\n").find("empty $SolvedCase") !=
         std::string::npos);
   CHECK(error_of("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$SolvedCase\n{}\n").find("bad.msh: $SolvedCase") != std::string::npos);
+}
+
+namespace {
+/// MSH 2.2 text of the unit square as 2 x 2 quads (nodes 1..9, node i + 3j + 1 at (i/2, j/2))
+/// with the boundary lines given as "phys entity a b" rows and the $PhysicalNames given.
+int edges_of(const Mesh& m, const std::string& group) {
+  const int g = m.find_group(group);
+  int n = 0;
+  for (const BoundaryEdge& be : m.boundary) n += be.group == g;
+  return g < 0 ? -1 : n;
+}
+std::string square22(const std::vector<std::array<long long, 4>>& lines, const std::string& names = "") {
+  std::ostringstream o;
+  o << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
+  if (!names.empty()) o << "$PhysicalNames\n" << names << "$EndPhysicalNames\n";
+  o << "$Nodes\n9\n";
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) o << i + 3 * j + 1 << ' ' << i * 0.5 << ' ' << j * 0.5 << " 0\n";
+  o << "$EndNodes\n$Elements\n" << lines.size() + 4 << '\n';
+  int t = 1;
+  for (const auto& l : lines) o << t++ << " 1 2 " << l[0] << ' ' << l[1] << ' ' << l[2] << ' ' << l[3] << '\n';
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int n = i + 3 * j + 1;
+      o << t++ << " 3 2 1 1 " << n << ' ' << n + 1 << ' ' << n + 4 << ' ' << n + 3 << '\n';
+    }
+  o << "$EndElements\n";
+  return o.str();
+}
+}  // namespace
+
+TEST_CASE("a boundary edge in two physical groups is refused naming both (a condition was silently lost)") {
+  // Gmsh's 2.2 writer repeats a line once per physical group: 'right' and 'outflow' on x = 1
+  const std::string names = "2\n1 2 \"right\"\n1 7 \"outflow\"\n";
+  const std::string e = error_of(square22({{2, 2, 3, 6}, {2, 2, 6, 9}, {7, 2, 3, 6}, {7, 2, 6, 9}}, names));
+  CHECK(e.find("bad.msh: the boundary edge (1, 0) - (1, 0.5) is in physical group 2 ('right') and in physical group 7 "
+               "('outflow')") != std::string::npos);
+  CHECK(e.find("keep one Physical Curve per curve") != std::string::npos);
+  // the same line twice in one group is one edge
+  Mesh m = from_text(square22({{2, 2, 3, 6}, {2, 2, 6, 9}, {2, 2, 6, 3}}, names));
+  CHECK(m.boundary.size() == 8);  // 2 read + 6 completed
+  CHECK(edges_of(m, "right") == 2);
+  // MSH 4.1: one curve entity with two physical tags
+  const std::string text41 = R"($MeshFormat
+4.1 0 8
+$EndMeshFormat
+$PhysicalNames
+2
+1 2 "right"
+1 7 "outflow"
+$EndPhysicalNames
+$Entities
+0 1 1 0
+5 1 0 0 1 1 0 2 2 7 0
+9 0 0 0 1 1 0 0 0
+$EndEntities
+$Nodes
+1 4 1 4
+2 9 0 4
+1
+2
+3
+4
+0 0 0
+1 0 0
+1 1 0
+0 1 0
+$EndNodes
+$Elements
+2 2 1 2
+1 5 1 1
+1 2 3
+2 9 3 1
+2 1 2 3 4
+$EndElements
+)";
+  CHECK(error_of(text41).find("curve 5 is in physical groups 2 ('right') and 7 ('outflow')") != std::string::npos);
+}
+
+TEST_CASE("unnamed curves on one side of the unit square all take the side's name") {
+  // no physical groups: each curve is its own entity; x = 0 is made of two curves (5 and 6)
+  Mesh m = from_text(square22({{0, 1, 1, 2}, {0, 1, 2, 3}, {0, 2, 3, 6}, {0, 2, 6, 9}, {0, 3, 9, 8}, {0, 3, 8, 7},
+                               {0, 5, 7, 4}, {0, 6, 4, 1}}));
+  REQUIRE(m.groups.size() == 4);  // before: left + boundary_6, and a case's "left" covered half the side
+  CHECK(edges_of(m, "left") == 2);
+  for (const char* side : {"bottom", "right", "top"}) CHECK(edges_of(m, side) == 2);
+}
+
+TEST_CASE("a physical tag beyond an int is refused, not wrapped") {
+  const std::string e = error_of(square22({{2147483653LL, 2, 3, 6}}, "1\n1 2147483653 \"right\"\n"));
+  CHECK(e.find("bad.msh: physical tag 2147483653 is out of range") != std::string::npos);
+  // an entity tag beyond an int (no physical group) gets a free tag
+  Mesh m = from_text(square22({{0, 4294967301LL, 3, 6}, {0, 4294967301LL, 6, 9}}));
+  CHECK(edges_of(m, "right") == 2);
+  CHECK(m.groups[m.find_group("right")].tag > 0);
 }
