@@ -183,7 +183,11 @@ int main(int argc, char** argv) {
     LpcvtResult r;
     {
       auto ph = tool.phase("lpcvt");
-      r = mesh_background(bg, job, tool.report(), log);
+      try {
+        r = mesh_background(bg, job, tool.report(), log);
+      } catch (const NumericalError& e) {  // the frame's domain is what failed: named, as InputErrors are
+        throw NumericalError((in.empty() ? std::string("--analytic ") + analytic : in) + ": " + e.what());
+      }
     }
     {
       auto ph = tool.phase("write");

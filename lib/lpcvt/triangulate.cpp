@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "core/format.hpp"
 #include "mesh/mesh.hpp"
 
 namespace quadapt::lpcvt {
@@ -74,12 +76,16 @@ Mesh triangulate_domain(const std::vector<Vec2>& sites_in, int nfixed,
     std::vector<CDT::Vertex_handle> vh(sites.size());
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) vh[v->info()] = v;
     for (auto s : segments) {
-      if (vh[s[0]] == CDT::Vertex_handle() || vh[s[1]] == CDT::Vertex_handle())
-        throw NumericalError("lpcvt: two boundary points coincide");
+      if (vh[s[0]] == CDT::Vertex_handle() || vh[s[1]] == CDT::Vertex_handle()) {
+        const Vec2& x = sites[vh[s[0]] == CDT::Vertex_handle() ? s[0] : s[1]];
+        throw NumericalError("two boundary points coincide at " + sci_point(x.x(), x.y()) +
+                             ": the domain's boundary passes twice there (a duplicated boundary edge, or walls that touch)");
+      }
       try {
         cdt.insert_constraint(vh[s[0]], vh[s[1]]);
       } catch (const std::exception&) {
-        throw NumericalError("lpcvt: boundary segments intersect each other");
+        throw NumericalError("boundary segments intersect each other near " +
+                             sci_point(sites[s[0]].x(), sites[s[0]].y()) + ": the domain's boundary crosses itself");
       }
     }
     // A free site on a segment splits the constraint: drop such sites and start again.
@@ -133,7 +139,7 @@ Mesh triangulate_domain(const std::vector<Vec2>& sites_in, int nfixed,
     }
     return m;
   }
-  throw NumericalError("lpcvt: could not conform the triangulation to the boundary");
+  throw NumericalError("could not conform the triangulation to the boundary");
 }
 
 }  // namespace quadapt::lpcvt

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/error.hpp"
 #include "helpers.hpp"
 #include "lpcvt/energy.hpp"
 #include "lpcvt/lpcvt.hpp"
@@ -364,4 +365,19 @@ TEST_CASE("points settled: the stop comes at the first window whose RMS metric m
   };
   CHECK(rms(x, y1) == doctest::Approx(r.window_move).epsilon(1e-9));
   CHECK(rms(y1, y2) > sc.o.move_tol);  // the previous window did not stop it
+}
+
+TEST_CASE("triangulate_domain: coinciding boundary points are named by their place, without a tool prefix") {
+  // the square's boundary with corner (0, 0) twice (as a duplicated boundary edge gives)
+  const Mesh bg = quadapt::make_structured_quads(1, 1);
+  const std::vector<Vec2> sites = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1), Vec2(0, 0)};
+  const std::vector<std::array<int, 2>> segments = {{0, 1}, {1, 2}, {2, 3}, {3, 4}};
+  try {
+    quadapt::lpcvt::triangulate_domain(sites, 5, segments, {0, 1, 2, 3}, bg);
+    FAIL("no error");
+  } catch (const quadapt::NumericalError& e) {
+    const std::string w = e.what();
+    CHECK(w.rfind("two boundary points coincide at (0", 0) == 0);  // was "lpcvt: two boundary points coincide"
+    CHECK(w.find("duplicated boundary edge") != std::string::npos);
+  }
 }
