@@ -75,7 +75,10 @@ std::string cell_shape_problem(const Mesh& m, int c) { return cell_problem(m, c)
 void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions& opt) {
   auto fail = [&](const std::string& problem) { throw InputError(path, problem); };
   const int nc = m.num_cells(), nn = m.num_nodes();
-  if (nc == 0) fail("the mesh has no cells (no triangles or quadrangles)");
+  if (nc == 0)
+    fail(m.boundary.empty() ? "the mesh has no cells (no triangles or quadrangles)"
+                            : "the mesh has no cells (no triangles or quadrangles), only boundary lines: Gmsh saves only "
+                              "the elements of physical groups, so add a Physical Surface holding the cells");
 
   for (int i = 0; i < nn; ++i)
     if (!std::isfinite(m.nodes[i].x()) || !std::isfinite(m.nodes[i].y()))
@@ -201,7 +204,11 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
     if (free_keys.count(k)) continue;
     fail("boundary edge " + point_text(m.nodes[be.v[0]]) + " - " + point_text(m.nodes[be.v[1]]) + " of '" + m.groups[be.group].name +
          "' is not on the boundary of the mesh (" +
-         (cell_keys.count(k) ? "it is an interior edge" : "it is not an edge of any cell") + ")");
+         (cell_keys.count(k) ? "it is an interior edge: a line on a curve inside the domain, which Gmsh saves when the "
+                               "file has no physical groups or that curve is in one; put the walls alone in Physical Curves "
+                               "and the cells in a Physical Surface"
+                             : "it is not an edge of any cell") +
+         ")");
   }
 
   std::vector<std::string> names;
