@@ -185,6 +185,19 @@ if [ $rc -gt 1 ]; then
 fi
 if [ -n "$GEOMETRY" ]; then
   err="$(meshconvert -q "$MESH" --geometry "$GEOMETRY" --order 1 -o /dev/null 2>&1)" || die "GEOMETRY: ${err#meshconvert: }"
+else
+  # a curved MESH (Gmsh -order 2) without GEOMETRY: refine cannot split it (before, uniform and
+  # fixed-fraction failed inside step 0, after this check), and lpcvt / bamg mesh its polygon (the
+  # steps after 0 straight-sided, silently)
+  q="$(command -v meshquality >/dev/null 2>&1 && meshquality -q "$MESH" 2>/dev/null | grep -o '"geometric_order": *[0-9]*' | grep -o '[0-9]*$' || true)"
+  if [ -n "$q" ] && [ "$q" -gt 1 ]; then
+    case "$METHOD" in
+      uniform|fixed-fraction)
+        die "MESH '$MESH' is curved (geometric order $q) and no GEOMETRY is given: refine splits straight-sided cells only; start from its straight view (meshconvert $MESH --order 1 -o STRAIGHT.msh), with GEOMETRY=FILE.geo to keep the boundary curved (docs/curved.md)" ;;
+      *)
+        echo "loop: warning: MESH '$MESH' is curved (geometric order $q) but no GEOMETRY is given: step 0 is solved on the curved cells, the adapted meshes of steps 1.. are straight-sided on MESH's polygon; to keep the boundary curved start from MESH's straight view (meshconvert $MESH --order 1 -o STRAIGHT.msh) with GEOMETRY=FILE.geo (docs/curved.md)" >&2 ;;
+    esac
+  fi
 fi
 if [ "$PICTURES" = yes ] && ! command -v meshplot >/dev/null 2>&1; then
   echo "loop: note: meshplot not found; the run will have no mesh pictures" >&2

@@ -138,4 +138,20 @@ for k in 1 2; do
   python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['hanging_nodes'] > 0, r" "$T/ff/step-$((k - 1))/adapted.json" \
     || fail "step-$((k - 1)): no hanging nodes"
 done
+# a curved MESH without GEOMETRY (Gmsh -order 2 output brought as it is): uniform / fixed-fraction
+# are refused by the check with both ways out (before: step 0 failed inside the run, after the
+# check had passed); lpcvt / bamg are warned that the steps after 0 are straight-sided (before: silent)
+meshconvert -q "$M" --geometry "$G" --order 2 -o "$T/curved2.msh"
+mkc() { make -s -f "$S/Makefile.cases" check CASE="$C" MESH="$T/curved2.msh" P=1 OUT="$T/cc" \
+          BIN="${BIN:-$(dirname "$(command -v dgsolve)")}" "$@" 2>&1; }
+for m in uniform fixed-fraction; do
+  msg=$(mkc METHOD=$m) && fail "check METHOD=$m on a curved MESH without GEOMETRY passed: $msg"
+  grep -q "is curved (geometric order 2) and no GEOMETRY is given.*meshconvert .*--order 1 -o STRAIGHT.msh), with GEOMETRY=FILE.geo" <<<"$msg" ||
+    fail "METHOD=$m curved MESH: $msg"
+done
+msg=$(mkc METHOD=lpcvt) || fail "check METHOD=lpcvt on a curved MESH refused: $msg"
+grep -q "warning: MESH .* is curved (geometric order 2) but no GEOMETRY is given" <<<"$msg" || fail "no curved-MESH warning: $msg"
+msg=$(mkc METHOD=lpcvt MESH="$M") || fail "check on the straight MESH refused: $msg"
+if grep -q "warning" <<<"$msg"; then fail "a curved-MESH warning on a straight MESH: $msg"; fi
+[ ! -e "$T/cc" ] || fail "check created OUT"
 echo "geometry: OK"
