@@ -209,18 +209,10 @@ $EndElementData
   CHECK(rho->values == std::vector<double>{10, 20, 30});  // the last time step
 }
 
-TEST_CASE("lines without physical names: unit-square sides, else boundary_<tag>") {
-  // MSH 4.1 with $Entities: curve 5 has physical tag 2 (no name), curve 6 none.
-  const std::string text = R"($MeshFormat
-4.1 0 8
-$EndMeshFormat
-$Entities
-0 2 1 0
-5 0 0 0 1 0 0 1 2 0
-6 0 0 0 1 1 0 0 0
-9 0 0 0 1 1 0 0 2 5 6
-$EndEntities
-$Nodes
+namespace {
+/// MSH 4.1 $Nodes of the unit square's corners 1..4 (counter-clockwise from (0, 0)), one block
+/// on surface entity 9.
+const std::string kSquareNodes41 = R"($Nodes
 1 4 1 4
 2 9 0 4
 1
@@ -232,7 +224,21 @@ $Nodes
 1 1 0
 0 1 0
 $EndNodes
-$Elements
+)";
+}  // namespace
+
+TEST_CASE("lines without physical names: unit-square sides, else boundary_<tag>") {
+  // MSH 4.1 with $Entities: curve 5 has physical tag 2 (no name), curve 6 none.
+  const std::string text = R"($MeshFormat
+4.1 0 8
+$EndMeshFormat
+$Entities
+0 2 1 0
+5 0 0 0 1 0 0 1 2 0
+6 0 0 0 1 1 0 0 0
+9 0 0 0 1 1 0 0 2 5 6
+$EndEntities
+)" + kSquareNodes41 + R"($Elements
 3 5 1 5
 1 5 1 1
 1 1 2
@@ -484,19 +490,7 @@ $Entities
 5 1 0 0 1 1 0 2 2 7 0
 9 0 0 0 1 1 0 0 0
 $EndEntities
-$Nodes
-1 4 1 4
-2 9 0 4
-1
-2
-3
-4
-0 0 0
-1 0 0
-1 1 0
-0 1 0
-$EndNodes
-$Elements
+)" + kSquareNodes41 + R"($Elements
 2 2 1 2
 1 5 1 1
 1 2 3
