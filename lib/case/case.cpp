@@ -242,8 +242,10 @@ void check_case_boundaries(const Case& cs, const Mesh& mesh) {
       throw InputError(cs.path, what + " '" + n + "' is not a boundary group of the mesh (groups: " + list() + ")" +
                                     (n == "all" ? "; every boundary is written \"dirichlet\": \"all\", a string, not a list" : ""));
     if (it->second == 0)
-      throw InputError(cs.path, what + " '" + n + "' is a boundary group of the mesh without any edge (a physical "
-                                "curve on the wrong entity?); groups with edges: " + list());
+      throw InputError(cs.path, what + " '" + n + "' is a boundary group of the mesh without any edge (no line of the "
+                                "mesh file carries it: a physical curve on the wrong entity, or an MSH 2.2 file saved "
+                                "with Mesh.SaveAll, which writes physical tag 0 on every line; save as MSH 4.1); "
+                                "groups with edges: " + list());
   };
   for (const std::string& n : cs.dirichlet) check(n, "Dirichlet boundary");
   for (const BoundaryData& bd : cs.neumann_data) check(bd.boundary, "Neumann boundary");

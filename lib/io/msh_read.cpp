@@ -618,17 +618,31 @@ class MshReader {
     // Several unnamed groups on one side (a side made of two curves in a file without physical
     // groups) all take the side's name: merged into the first (before, the second became
     // boundary_<tag>, and a case's "left" covered half of x = 0).
+    // A side name declared in $PhysicalNames that no line carries (Gmsh's MSH 2.2 with
+    // Mesh.SaveAll writes physical tag 0 on every element) takes the unnamed groups on its side
+    // too: before, 'right' stayed empty beside boundary_2 and the case's 'right' was refused.
+    // Only in that signature (names declared, no line with a physical tag): a name declared for
+    // a curve that lost its tag while the others kept theirs stays refused by the case check.
     std::vector<int> merged_into(m_.groups.size(), -1);
-    std::map<std::string, int> side_group;  // side name -> the unnamed group that took it
+    std::vector<int> edges(m_.groups.size(), 0);
+    for (const BoundaryEdge& be : m_.boundary) ++edges[be.group];
+    const bool save_all_22 = std::none_of(lines_.begin(), lines_.end(), [](const RawLine& l) { return l.phys != 0; });
+    std::map<std::string, int> side_group;  // side name -> the group that took it
     for (size_t g = 0; g < m_.groups.size(); ++g) {
       if (!m_.groups[g].name.empty()) continue;
       std::string name;
       if (square && one_side[g] && !side[g].empty()) {
-        if (m_.find_group(side[g]) < 0) {
+        const int named = m_.find_group(side[g]);
+        if (named < 0) {
           name = side[g];
           side_group[name] = static_cast<int>(g);
         } else if (auto it = side_group.find(side[g]); it != side_group.end()) {
           merged_into[g] = it->second;
+          m_.groups[g].name = side[g];  // (removed below)
+          continue;
+        } else if (save_all_22 && edges[named] == 0 && !by_entity[named]) {
+          side_group[side[g]] = named;
+          merged_into[g] = named;
           m_.groups[g].name = side[g];  // (removed below)
           continue;
         }

@@ -97,7 +97,11 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
     int c = 0;
     while (m.cells[c].nv != 3) ++c;
     fail(cell_label(m, c) + " is a triangle, but quadrilaterals are required (" + std::to_string(ntri) + " triangles, " +
-         std::to_string(nquad) + " quadrilaterals; in Gmsh: Recombine Surface, or recombine TRI.msh -o QUAD.msh)");
+         std::to_string(nquad) + " quadrilaterals; " +
+         (nquad == 0 ? std::string("in Gmsh: Recombine Surface, or recombine TRI.msh -o QUAD.msh)")
+                     : std::string("a quad-dominant mesh: in Gmsh add Mesh.RecombinationAlgorithm = 2 (full-quad) or "
+                                   "Mesh.SubdivisionAlgorithm = 1 (all quads by splitting); recombine takes "
+                                   "all-triangle meshes)")));
   }
   if (opt.require == CellKind::Triangles && nquad > 0) {
     int c = 0;

@@ -116,7 +116,7 @@ check truncated "truncated file"
 check version "unsupported MSH format version '5.0'"
 check missing_nodes "\$Nodes"
 check nan "non-finite coordinate"
-check triangle "quadrilaterals; in Gmsh: Recombine Surface, or recombine TRI.msh -o QUAD.msh" --require quads
+check triangle "quadrilaterals; a quad-dominant mesh: in Gmsh add Mesh.RecombinationAlgorithm = 2" --require quads
 check inverted "is inverted"
 check count "\$Nodes: the header says 20 nodes, but the blocks list 9"
 check nodes_tag_outside "\$Nodes: the header says node tags 1 to 9, but the blocks list tags 1 to 10"

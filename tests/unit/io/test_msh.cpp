@@ -518,3 +518,15 @@ TEST_CASE("a physical tag beyond an int is refused, not wrapped") {
   CHECK(edges_of(m, "right") == 2);
   CHECK(m.groups[m.find_group("right")].tag > 0);
 }
+
+TEST_CASE("MSH 2.2 saved with Mesh.SaveAll: declared side names take the lines Gmsh wrote with physical tag 0") {
+  // $PhysicalNames lists the four sides, but every line carries physical tag 0 and its curve as
+  // entity; before, bottom..left stayed empty beside boundary_1..4 and a case's 'right' was refused
+  const std::string names = "4\n1 1 \"bottom\"\n1 2 \"right\"\n1 3 \"top\"\n1 4 \"left\"\n";
+  Mesh m = from_text(square22({{0, 1, 1, 2}, {0, 1, 2, 3}, {0, 2, 3, 6}, {0, 2, 6, 9}, {0, 3, 9, 8}, {0, 3, 8, 7},
+                               {0, 4, 7, 4}, {0, 4, 4, 1}},
+                              names));
+  REQUIRE(m.groups.size() == 4);
+  for (const char* side : {"bottom", "right", "top", "left"}) CHECK(edges_of(m, side) == 2);
+  CHECK(m.groups[m.find_group("right")].tag == 2);  // the declared physical tag
+}

@@ -63,7 +63,14 @@ TEST_CASE("each problem is named") {
     CHECK(problem(m) == "");
     std::string p = problem(m, quads);
     CHECK(has(p, "m.msh: cell 2 (centroid"));
-    CHECK(has(p, "is a triangle, but quadrilaterals are required (2 triangles, 3 quadrilaterals; in Gmsh: Recombine Surface, or recombine TRI.msh -o QUAD.msh)"));
+    // a quad-dominant mesh: recombine takes all-triangle meshes, so the hint is Gmsh's full-quad options
+    CHECK(has(p, "is a triangle, but quadrilaterals are required (2 triangles, 3 quadrilaterals; a quad-dominant mesh: in "
+                 "Gmsh add Mesh.RecombinationAlgorithm = 2 (full-quad) or Mesh.SubdivisionAlgorithm = 1"));
+    // all triangles: recombine does take them
+    Mesh t;
+    t.nodes = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+    t.cells.push_back(Cell{{0, 1, 2, -1}, 3});
+    CHECK(has(problem(t, quads), "(1 triangles, 0 quadrilaterals; in Gmsh: Recombine Surface, or recombine TRI.msh -o QUAD.msh)"));
   }
   SUBCASE("an inverted quad") {
     Mesh m = make_perturbed_quads(3, 3, 0.1, 1);
