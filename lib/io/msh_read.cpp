@@ -548,8 +548,9 @@ class MshReader {
 
   /// quadapt gives each boundary edge one group: a curve in two physical groups (4.1: an entity
   /// with two tags; 2.2: the same line written once per group) would silently lose one of them —
-  /// a Dirichlet condition or the functional's boundary. Refused, naming both.
-  void check_one_group_per_edge() {
+  /// a Dirichlet condition or the functional's boundary. Refused, naming both. A line written
+  /// twice in one group is one boundary edge: the repeats are dropped from lines_.
+  void one_group_per_edge() {
     for (const RawLine& l : lines_) {
       auto it = curve_extra_phys_.find(l.entity);
       if (l.phys != 0 && it != curve_extra_phys_.end())
@@ -558,11 +559,15 @@ class MshReader {
                 ": quadapt gives each boundary edge one group; keep one Physical Curve per curve");
     }
     std::map<std::pair<int, int>, long long> seen;  // sorted end nodes -> group key of the first line
+    std::vector<RawLine> kept;
+    kept.reserve(lines_.size());
     for (const RawLine& l : lines_) {
       const auto key = std::minmax(l.a, l.b);
       const long long group = l.phys != 0 ? l.phys : -l.entity;
       auto [it, fresh] = seen.emplace(key, group);
-      if (!fresh && it->second != group) {
+      if (fresh) {
+        kept.push_back(l);
+      } else if (it->second != group) {
         const auto label = [&](long long g) { return g > 0 ? "physical group " + physical_label(g) : "curve " + std::to_string(-g); };
         std::ostringstream e;
         e.precision(6);
@@ -573,10 +578,11 @@ class MshReader {
         c_.fail(e.str());
       }
     }
+    lines_ = std::move(kept);
   }
 
   void build_groups() {
-    check_one_group_per_edge();
+    one_group_per_edge();
     // Boundary groups: declared dim-1 physical names first, then unnamed keys in file order.
     std::map<std::pair<int, long long>, int> group_of;  // (0 = physical, 1 = entity), tag
     std::vector<char> by_entity;
@@ -587,9 +593,7 @@ class MshReader {
       m_.groups.push_back({static_cast<int>(tag), name});
       by_entity.push_back(0);
     }
-    std::set<std::pair<int, int>> have;  // a line written twice in one group is one boundary edge
     for (const RawLine& l : lines_) {
-      if (!have.insert(std::minmax(l.a, l.b)).second) continue;
       std::pair<int, long long> k = l.phys != 0 ? std::make_pair(0, l.phys) : std::make_pair(1, l.entity);
       auto it = group_of.find(k);
       int g;
@@ -624,8 +628,6 @@ class MshReader {
     // Only in that signature (names declared, no line with a physical tag): a name declared for
     // a curve that lost its tag while the others kept theirs stays refused by the case check.
     std::vector<int> merged_into(m_.groups.size(), -1);
-    std::vector<int> edges(m_.groups.size(), 0);
-    for (const BoundaryEdge& be : m_.boundary) ++edges[be.group];
     const bool save_all_22 = std::none_of(lines_.begin(), lines_.end(), [](const RawLine& l) { return l.phys != 0; });
     std::map<std::string, int> side_group;  // side name -> the group that took it
     for (size_t g = 0; g < m_.groups.size(); ++g) {
@@ -640,7 +642,7 @@ class MshReader {
           merged_into[g] = it->second;
           m_.groups[g].name = side[g];  // (removed below)
           continue;
-        } else if (save_all_22 && edges[named] == 0 && !by_entity[named]) {
+        } else if (save_all_22 && !by_entity[named]) {  // a declared name: no line carries it
           side_group[side[g]] = named;
           merged_into[g] = named;
           m_.groups[g].name = side[g];  // (removed below)

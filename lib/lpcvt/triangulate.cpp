@@ -12,7 +12,6 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
-#include "core/format.hpp"
 #include "mesh/mesh.hpp"
 
 namespace quadapt::lpcvt {
