@@ -87,8 +87,11 @@ class MshReader {
 
   Mesh read() {
     if (c_.at_end()) c_.fail("empty file (not a Gmsh MSH file)");
-    if (c_.token("$MeshFormat") != "$MeshFormat")
-      c_.fail("not a Gmsh MSH file (it does not start with $MeshFormat)");
+    const std::string_view first = c_.token("$MeshFormat");
+    if (first == "$NOD" || first == "$PTS")
+      c_.fail("an MSH 1 file (it starts with " + std::string(first) + "): quadapt reads MSH 4.1 and 2.2; save it again "
+              "from Gmsh with -format msh41 (or Mesh.MshFileVersion = 4.1)");
+    if (first != "$MeshFormat") c_.fail("not a Gmsh MSH file (it does not start with $MeshFormat)");
     c_.section = "MeshFormat";
     read_format();
     while (!c_.at_end()) {
@@ -100,6 +103,7 @@ class MshReader {
       c_.section = name;
       if (name == "PhysicalNames") read_physical_names();
       else if (name == "Entities" && major_ == 4) read_entities();
+      else if (name == "PartitionedEntities" && major_ == 4) read_partitioned_entities();
       else if (name == "Nodes") major_ == 4 ? read_nodes4() : read_nodes2();
       else if (name == "Elements") major_ == 4 ? read_elements4() : read_elements2();
       else if (name == "NodeData") read_view(ViewKind::Node);
@@ -130,6 +134,8 @@ class MshReader {
   std::map<long long, std::string> surface_names_;
   std::map<std::pair<int, long long>, long long> entity_phys_;  // (dim, entity) -> first physical tag
   std::map<long long, std::vector<long long>> curve_extra_phys_;  // curve entity -> its other physical tags
+  static constexpr long long kInterface = std::numeric_limits<long long>::min();
+  std::map<std::pair<int, long long>, long long> partition_parent_;  // (dim, piece) -> parent tag, or kInterface
   std::unordered_map<long long, int> node_index_;
   std::unordered_map<long long, int> cell_index_;
   std::vector<long long> cell_tags_;
@@ -234,6 +240,43 @@ class MshReader {
         entity_phys_[{dim, tag}] = first;
       }
     c_.expect_end("Entities");
+  }
+
+  // MSH 4.1 written with partitions (gmsh -part N): the elements sit on partitioned entities,
+  // each a piece of a model entity of $Entities (its parent, same dimension) or an interface
+  // between partitions (a parent of higher dimension). A piece is read as its parent — its
+  // physical groups, and its tag where lines have no physical group — and the lines of a
+  // partition interface, interior edges of the domain, are dropped.
+  void read_partitioned_entities() {
+    if (c_.binary) c_.begin_binary();
+    c_.any_size("number of partitions");
+    const long long nghost = bounded(c_.any_size("number of ghost entities"), "number of ghost entities");
+    for (long long i = 0; i < nghost; ++i) {
+      c_.any_int("ghost entity tag");
+      c_.any_int("ghost entity partition");
+    }
+    long long num[4];
+    for (auto& v : num) v = bounded(c_.any_size("number of partitioned entities"), "number of partitioned entities");
+    for (int dim = 0; dim < 4; ++dim)
+      for (long long i = 0; i < num[dim]; ++i) {
+        const long long tag = c_.any_int("partitioned entity tag");
+        const long long parent_dim = c_.any_int("parent dimension");
+        const long long parent_tag = c_.any_int("parent tag");
+        const long long np = bounded(c_.any_size("number of partitions of the entity"), "number of partitions");
+        for (long long k = 0; k < np; ++k) c_.any_int("partition tag");
+        for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) c_.any_real("entity coordinates");
+        const long long nphys = bounded(c_.any_size("number of physical tags"), "number of physical tags");
+        for (long long k = 0; k < nphys; ++k) c_.any_int("physical tag");
+        if (dim > 0) {
+          const long long nb = bounded(c_.any_size("number of bounding entities"), "number of bounding entities");
+          for (long long k = 0; k < nb; ++k) c_.any_int("bounding entity tag");
+        }
+        if (parent_dim < dim || parent_dim > 3)
+          c_.fail("partitioned entity " + std::to_string(tag) + " of dimension " + std::to_string(dim) +
+                  " has a parent of dimension " + std::to_string(parent_dim));
+        partition_parent_[{dim, tag}] = parent_dim == dim ? parent_tag : kInterface;
+      }
+    c_.expect_end("PartitionedEntities");
   }
 
   void add_node(long long tag, double x, double y, double z) {
@@ -375,17 +418,22 @@ class MshReader {
     long long b = 0, listed = 0, lo = 0, hi = 0;
     for (; !c_.next_is("$EndElements"); ++b) {
       const long long dim = c_.any_int("entity dimension");
-      const long long entity = c_.any_int("entity tag");
+      long long entity = c_.any_int("entity tag");
       const long long type = c_.any_int("element type");
       const long long n = bounded(c_.any_size("number of elements in block"), "number of elements in block");
       const int npe = nodes_of_type(type);
       if (npe < 0) unsupported(type);
+      bool interface = false;  // a partition interface: its lines are interior edges
+      if (auto pp = partition_parent_.find({static_cast<int>(dim), entity}); pp != partition_parent_.end()) {
+        interface = pp->second == kInterface;
+        entity = pp->second;
+      }
       auto it = entity_phys_.find({static_cast<int>(dim), entity});
       const long long phys = it == entity_phys_.end() ? 0 : it->second;
       for (long long e = 0; e < n; ++e) {
         const long long tag = c_.any_size("element tag");
         for (int k = 0; k < npe; ++k) nodes[k] = c_.any_size("element nodes");
-        add_element(type, tag, phys, entity, nodes);
+        if (!(interface && dim == 1)) add_element(type, tag, phys, entity, nodes);
         widen(lo, hi, listed, tag);
         ++listed;
       }
