@@ -3,6 +3,7 @@
 #include <chrono>
 #include <string>
 
+#include "case/boundary_conditions.hpp"
 #include "case/case.hpp"
 #include "case/solved_case.hpp"
 #include "cli/tool.hpp"
@@ -26,7 +27,8 @@ int main(int argc, char** argv) {
             "expression (the source S is its exact symbolic derivative), the Dirichlet boundaries and the "
             "functional J = int over a boundary of u^2. Output: SOL = MESH with the DG field 'u' (the "
             "(p+1)^2 GLL nodal values per cell; Gmsh shows it as a high-order field) and the report "
-            "SOL.json: cells, p, dofs, l2_error, functional, functional_exact, functional_error, solver, "
+            "SOL.json: cells, p, dofs, boundaries (per group: condition, data from the case or the exact solution, "
+            "added from free edges), l2_error, functional, functional_exact, functional_error, solver, "
             "timings per phase, peak memory.");
   std::string in, out, case_path, solver = "auto";
   DGSolveOptions opt;
@@ -69,6 +71,12 @@ int main(int argc, char** argv) {
       cs = load_case(case_path);
       check_case_boundaries(cs, mesh);
     }
+    const std::vector<GroupCondition> conditions = group_conditions(cs, mesh);
+    tool.log("boundaries: " + conditions_text(conditions));
+    if (const std::string w = free_edge_warning(cs, mesh, conditions, in); !w.empty()) {
+      tool.log("warning: " + w);
+      tool.report()["warnings"].push_back(w);
+    }
     if (mesh.cell_field("Vinv"))  // a frame file given as the mesh: legal, but rarely meant
       tool.log("note: " + in + " carries a frame (Vinv): solving on its cells, the mesh the frame was made on "
                "(the mesh the frame asks for is lpcvt's or bamgquad's output)");
@@ -92,6 +100,15 @@ int main(int argc, char** argv) {
       write_msh(mesh, out);
     }
     rep["case"] = case_path;
+    rep["boundaries"] = nlohmann::json::array();
+    for (const GroupCondition& g : conditions)
+      rep["boundaries"].push_back({{"name", g.name},
+                                   {"tag", g.tag},
+                                   {"edges", g.edges},
+                                   {"condition", g.dirichlet ? "dirichlet" : "natural"},
+                                   {"data", g.case_data ? "case" : "exact"},
+                                   {"functional", g.functional},
+                                   {"added_from_free_edges", g.from_free_edges}});
     if (!cs.name.empty()) rep["case_name"] = cs.name;
     rep["cells"] = r.cells;
     rep["p"] = r.p;

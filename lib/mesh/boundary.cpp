@@ -253,7 +253,7 @@ int complete_boundary(Mesh& m, const BoundaryOptions& opt) {
       while (m.find_group("boundary_" + std::to_string(k)) >= 0) ++k;
       name = "boundary_" + std::to_string(k++);
     }
-    m.groups.push_back({m.free_tag(), name});
+    m.groups.push_back({m.free_tag(), name, true});
     const int g = static_cast<int>(m.groups.size()) - 1;
     for (int e : curve) m.boundary.push_back({missing[e], g});
   }

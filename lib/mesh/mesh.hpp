@@ -44,6 +44,9 @@ struct BoundaryEdge {
 struct BoundaryGroup {
   int tag = 0;
   std::string name;
+  /// Made by complete_boundary (mesh/boundary.hpp) from free edges no line of the file covered,
+  /// not read from the file; written back as an ordinary physical group (so false once re-read).
+  bool from_free_edges = false;
 };
 
 /// High-order geometry of the cells (mesh/curved.hpp): order q and, per cell, (q+1)^2 control

@@ -134,6 +134,37 @@ set -e
 [ $rc = 2 ] || fail "overwriting the input: exit $rc"
 python3 "$MK" 4 "$T/sq4b.msh"
 cmp -s "$T/sq4.msh" "$T/sq4b.msh" || fail "input modified"
+# --- which condition each boundary group got: in the log and the report; a warning when the file
+# tags some walls and quadapt made a group of the rest that the case does not name (was silent:
+# the untagged wall got the natural condition with the exact flux)
+python3 - "$T/sq4.msh" "$T/notop.msh" <<'EOF'
+import sys
+L = open(sys.argv[1]).read().split("\n")
+i = L.index("1 3 1 4")  # the lines of "top" (declared still): header + 4 lines
+del L[i:i + 5]
+e = L.index("$Elements") + 1
+nb, n, lo, hi = map(int, L[e].split())
+L[e] = "%d %d %d %d" % (nb - 1, n - 4, lo, hi)
+open(sys.argv[2], "w").write("\n".join(L))
+EOF
+mkcase twosides '{"exact": "x*y", "diffusion": [[1, 0], [0, 1]], "dirichlet": ["left", "bottom"]}'
+dgsolve "$T/notop.msh" -c "$T/twosides.json" -p 1 -o "$T/nt.msh" 2> "$T/nt.err"
+grep -q "boundaries: bottom: Dirichlet (exact data); right: natural (exact flux); left: Dirichlet (exact data); boundary_1: natural (exact flux), added from free edges" "$T/nt.err" || fail "no conditions line: $(cat "$T/nt.err")"
+[ "$(grep -c "warning: .*notop.msh: 4 boundary edges carry no line of the file .*the group 'boundary_1' of them, which .*twosides.json does not name" "$T/nt.err")" = 1 ] || fail "no free-edge warning: $(cat "$T/nt.err")"
+python3 - "$T/nt.json" <<'EOF'
+import json, sys
+r = json.load(open(sys.argv[1]))
+b = {g["name"]: g for g in r["boundaries"]}
+assert sorted(b) == ["bottom", "boundary_1", "left", "right"], b
+assert b["boundary_1"] == {"name": "boundary_1", "tag": 5, "edges": 4, "condition": "natural", "data": "exact", "functional": False,
+                    "added_from_free_edges": True}, b["boundary_1"]
+assert b["left"]["condition"] == "dirichlet" and not b["left"]["added_from_free_edges"], b["left"]
+assert len(r["warnings"]) == 1 and "'boundary_1'" in r["warnings"][0], r.get("warnings")
+EOF
+# every group tagged: no warning
+dgsolve "$T/sq4.msh" -c "$T/twosides.json" -p 1 -o "$T/al.msh" 2> "$T/al.err"
+grep -q "warning" "$T/al.err" && fail "a warning with every wall tagged: $(cat "$T/al.err")"
+python3 -c "import json,sys; assert 'warnings' not in json.load(open(sys.argv[1]))" "$T/al.json" || fail "warnings in the report"
 # --- a frame file given as the mesh (a loop's step-K/frame.msh for its mesh.msh): solved on its
 # cells, with a note that says what it is (was: silent); a plain mesh gets no note
 dgsolve "$SRC/tests/fixtures/philip/input_ss15_fb_p1_3.msh" -c "$CASES/smooth.json" -p 1 -o "$T/fr.msh" 2> "$T/fr.err"
