@@ -124,6 +124,10 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
   if (clockwise == nc)
     fail("every cell is ordered clockwise; quadapt needs counter-clockwise cells: reverse the mesh (Gmsh: "
          "ReverseMesh Surface{...}; in the .geo, or a counter-clockwise Curve Loop)");
+  if (bad > 0 && bad == clockwise && bad > 1)  // only orientation is wrong, in part of the mesh
+    fail(cell_label(m, first_bad) + " is " + first_problem + " (" + std::to_string(bad) + " of " + std::to_string(nc) +
+         " cells, all of them ordered clockwise: a surface meshed clockwise beside counter-clockwise ones? In Gmsh: "
+         "ReverseMesh Surface{...}; for it, or a counter-clockwise Curve Loop)");
   if (bad > 0)
     fail(cell_label(m, first_bad) + " is " + first_problem +
          (bad > 1 ? " (" + std::to_string(bad) + " invalid cells in all)" : ""));

@@ -93,6 +93,24 @@ TEST_CASE("each problem is named") {
     for (Cell& c : m.cells) std::swap(c.v[1], c.v[3]);
     CHECK(has(problem(m), "m.msh: every cell is ordered clockwise; quadapt needs counter-clockwise cells"));
   }
+  SUBCASE("one surface clockwise beside counter-clockwise ones: the ReverseMesh hint") {
+    // Gmsh's two-surface mesh with one Curve Loop reversed (was: "22 invalid cells in all", no hint)
+    Mesh m = make_structured_quads(4, 2);
+    int reversed = 0;
+    for (int c = 0; c < m.num_cells(); ++c)
+      if (cell_centroid(m, c).x() > 0.5) {
+        std::swap(m.cells[c].v[1], m.cells[c].v[3]);
+        ++reversed;
+      }
+    REQUIRE(reversed == 4);
+    const std::string p = problem(m);
+    CHECK(has(p, "is inverted (ordered clockwise: every corner's Jacobian is negative) (4 of 8 cells, all of them "
+                 "ordered clockwise: a surface meshed clockwise beside counter-clockwise ones? In Gmsh: ReverseMesh "
+                 "Surface{...}; for it"));
+    // another kind of problem among them: the plain count
+    m.nodes[1] = Vec2(0.3, 0.6);
+    CHECK(has(problem(m), "invalid cells in all)"));
+  }
   SUBCASE("a reversed quad") {
     Mesh m = make_structured_quads(2, 2);
     std::swap(m.cells[0].v[1], m.cells[0].v[3]);
