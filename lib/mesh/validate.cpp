@@ -198,10 +198,16 @@ void validate_mesh(const Mesh& m, const std::string& path, const ValidateOptions
         if (off(fj.a) > tol || off(fj.b) > tol) continue;
         double s0 = (fj.a - fi.a).dot(d) / d.squaredNorm(), s1 = (fj.b - fi.a).dot(d) / d.squaredNorm();
         double lo = std::max(0.0, std::min(s0, s1)), hi = std::min(1.0, std::max(s0, s1));
-        if (hi - lo > 1e-9)
-          fail("cells " + std::to_string(fi.cell[0] + 1) + " and " + std::to_string(fj.cell[0] + 1) +
-               " meet along " + point_text(0.5 * (fi.a + fi.b)) +
-               " without sharing an edge: only conforming or 2:1 (one hanging node) interfaces are supported");
+        if (hi - lo <= 1e-9) continue;
+        const double eq = 1e-9 * fi.length;  // the same edge twice, on other node numbers
+        if (((fi.a - fj.b).norm() <= eq && (fi.b - fj.a).norm() <= eq) || ((fi.a - fj.a).norm() <= eq && (fi.b - fj.b).norm() <= eq))
+          fail("cells " + std::to_string(fi.cell[0] + 1) + " and " + std::to_string(fj.cell[0] + 1) + " share the edge " +
+               point_text(fi.a) + " - " + point_text(fi.b) +
+               " on duplicated nodes (two blocks whose shared nodes were not merged): merge them, in Gmsh with "
+               "Coherence Mesh; (or Coherence; on the geometry)");
+        fail("cells " + std::to_string(fi.cell[0] + 1) + " and " + std::to_string(fj.cell[0] + 1) +
+             " meet along " + point_text(0.5 * (fi.a + fi.b)) +
+             " without sharing an edge: only conforming or 2:1 (one hanging node) interfaces are supported");
       }
     }
   }

@@ -185,3 +185,23 @@ TEST_CASE("an interface worse than 2:1 is refused, not taken as outer boundary")
   CHECK(has(p, "m.msh: "));
   CHECK(has(p, "without sharing an edge"));
 }
+
+TEST_CASE("two blocks on duplicated nodes: the message says so and names Gmsh's Coherence") {
+  // [0,1]x[0,1] and [1,2]x[0,1], each 1 x 2 cells, the nodes on x = 1 written twice (Gmsh
+  // without Coherence). Was: "cells 1 and 3 meet along (1, 0.25) without sharing an edge".
+  Mesh m = make_structured_quads(1, 2);
+  const Mesh right = make_structured_quads(1, 2, 1, 2, 0, 1);
+  const int off = m.num_nodes();
+  for (const Vec2& p : right.nodes) m.nodes.push_back(p);
+  for (Cell c : right.cells) {
+    for (int k = 0; k < c.nv; ++k) c.v[k] += off;
+    m.cells.push_back(c);
+  }
+  const std::string p = problem(m);
+  CHECK(has(p, "m.msh: cells "));
+  CHECK(has(p, "on duplicated nodes (two blocks whose shared nodes were not merged): merge them, in Gmsh with "
+               "Coherence Mesh;"));
+  // the same blocks 1e-3 apart are not duplicated nodes (a slit, or a gap)
+  for (int i = off; i < m.num_nodes(); ++i) m.nodes[i].x() += 1e-3;
+  CHECK_FALSE(has(problem(m), "duplicated nodes"));
+}
