@@ -118,6 +118,7 @@ class MshReader {
     c_.section.clear();
     if (!have_nodes_) c_.fail("missing $Nodes section");
     if (!have_elements_) c_.fail("missing $Elements section");
+    check_plane();
     if (quad_order_ > 1) finish_curved();
     build_groups();
     build_fields();
@@ -134,6 +135,7 @@ class MshReader {
   std::map<long long, std::string> surface_names_;
   std::map<std::pair<int, long long>, long long> entity_phys_;  // (dim, entity) -> first physical tag
   std::map<long long, std::vector<long long>> curve_extra_phys_;  // curve entity -> its other physical tags
+  double z_lo_ = std::numeric_limits<double>::infinity(), z_hi_ = -std::numeric_limits<double>::infinity();
   static constexpr long long kInterface = std::numeric_limits<long long>::min();
   std::map<std::pair<int, long long>, long long> partition_parent_;  // (dim, piece) -> parent tag, or kInterface
   std::unordered_map<long long, int> node_index_;
@@ -242,6 +244,26 @@ class MshReader {
     c_.expect_end("Entities");
   }
 
+  // quadapt reads x and y; a planar mesh drawn in the x-z or y-z plane would read as cells of
+  // zero area ("degenerate"), which hides the cause
+  void check_plane() {
+    if (m_.nodes.empty() || !(z_hi_ > z_lo_)) return;
+    double lo[2] = {m_.nodes[0].x(), m_.nodes[0].y()}, hi[2] = {lo[0], lo[1]};
+    for (const Vec2& p : m_.nodes)
+      for (int d = 0; d < 2; ++d) {
+        lo[d] = std::min(lo[d], p[d]);
+        hi[d] = std::max(hi[d], p[d]);
+      }
+    for (int d = 0; d < 2; ++d)
+      if (hi[d] == lo[d]) {
+        std::ostringstream s;
+        s << "the mesh lies in the " << (d == 0 ? "y-z" : "x-z") << " plane (" << (d == 0 ? "x" : "y") << " = " << lo[d]
+          << " at every node, z from " << z_lo_ << " to " << z_hi_
+          << "): quadapt reads x and y only; turn it into the x-y plane (Gmsh: Rotate, or draw it there)";
+        c_.fail(s.str());
+      }
+  }
+
   // MSH 4.1 written with partitions (gmsh -part N): the elements sit on partitioned entities,
   // each a piece of a model entity of $Entities (its parent, same dimension) or an interface
   // between partitions (a parent of higher dimension). A piece is read as its parent — its
@@ -287,6 +309,8 @@ class MshReader {
     }
     if (!node_index_.emplace(tag, m_.num_nodes()).second) c_.fail("node tag " + std::to_string(tag) + " appears twice");
     m_.nodes.emplace_back(x, y);
+    z_lo_ = std::min(z_lo_, z);
+    z_hi_ = std::max(z_hi_, z);
   }
 
   void read_nodes4() {

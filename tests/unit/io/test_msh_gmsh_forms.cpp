@@ -1,4 +1,5 @@
-// Files Gmsh writes in other forms than a plain save: partitioned (gmsh -part N) and MSH 1.
+// Files Gmsh writes in other forms than a plain save of an x-y mesh: partitioned (gmsh -part N),
+// MSH 1, a mesh drawn in another plane.
 #include <doctest/doctest.h>
 
 #include <sstream>
@@ -339,4 +340,22 @@ TEST_CASE("an MSH 1 file is named as such, with the option that saves it readabl
     CHECK(std::string(e.what()) == "part.msh: an MSH 1 file (it starts with $NOD): quadapt reads MSH 4.1 and 2.2; save "
                                    "it again from Gmsh with -format msh41 (or Mesh.MshFileVersion = 4.1)");
   }
+}
+
+TEST_CASE("a mesh drawn in the x-z plane is refused naming the plane (was: 'degenerate: zero area')") {
+  const std::string xz = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 0 1\n4 0 0 1\n"
+                         "$EndNodes\n$Elements\n1\n1 3 2 1 1 1 2 3 4\n$EndElements\n";
+  try {
+    from_text(xz);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()) == "part.msh: the mesh lies in the x-z plane (y = 0 at every node, z from 0 to 1): "
+                                   "quadapt reads x and y only; turn it into the x-y plane (Gmsh: Rotate, or draw it there)");
+  }
+  // the same square in the x-y plane at z = 2 reads (z is ignored)
+  std::string xy = xz;
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"3 1 0 1", "3 1 1 2"}, {"4 0 0 1", "4 0 1 2"},
+                                 {"1 0 0 0", "1 0 0 2"}, {"2 1 0 0", "2 1 0 2"}})
+    xy.replace(xy.find(from), from.size(), to);
+  CHECK(from_text(xy).num_cells() == 1);
 }
