@@ -397,8 +397,15 @@ class MshReader {
   }
 
   void unsupported(long long type) {
+    std::string hint;  // what to change in Gmsh for the element types it makes
+    if (type == 16)  // serendipity: Gmsh's incomplete second order
+      hint = "; Gmsh writes it with Mesh.SecondOrderIncomplete = 1: set it to 0 for the complete (9-node) quadrangle";
+    else if (type == 9 || (type >= 20 && type <= 25))  // triangles of order 2 to 5
+      hint = "; curved cells must be quadrangles (Recombine Surface, then Mesh.ElementOrder), or save at order 1";
+    else if ((type >= 4 && type <= 7) || (type >= 11 && type <= 14) || (type >= 17 && type <= 19))  // volumes
+      hint = "; quadapt is 2D: mesh the surface only (gmsh -2)";
     c_.fail("element " + type_description(type) +
-            " is not supported (quadapt reads lines, 3-node triangles and 4- to 49-node quadrangles of order 1 to 6)");
+            " is not supported (quadapt reads lines, 3-node triangles and 4- to 49-node quadrangles of order 1 to 6)" + hint);
   }
 
   /// Curved mesh: the control points of every cell from its high-order nodes; then Mesh::nodes

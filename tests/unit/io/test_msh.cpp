@@ -361,6 +361,10 @@ TEST_CASE("bad input: one InputError naming the file and the problem") {
     REQUIRE(at != std::string::npos);
     t.replace(at, 9, "\n2 1 16 4\n");
     CHECK(msg(t).find("8-node quadrangle is not supported") != std::string::npos);
+    CHECK(msg(t).find("Mesh.SecondOrderIncomplete = 1: set it to 0") != std::string::npos);
+    t = good;
+    t.replace(at, 9, "\n2 1 5 4\n");  // an 8-node hexahedron
+    CHECK(msg(t).find("quadapt is 2D: mesh the surface only (gmsh -2)") != std::string::npos);
   }
   SUBCASE("field without a value for a cell") {
     Mesh m = make_structured_quads(2, 2);
