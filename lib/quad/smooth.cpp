@@ -62,17 +62,39 @@ LocalQuality cells_quality(const Mesh& m, const std::vector<int>& cells, const M
   return q;
 }
 
-// Smallest corner sine (the scaled Jacobian; negative at a reflex corner) over the cells, after
-// the map T: sin(angle) = cross(e_next, e_prev) / (|e_next| |e_prev|), no trigonometry.
-double cells_min_sine(const Mesh& m, const std::vector<int>& cells, const Mat2& T) {
-  double s = 1e300;
+// The sines of corner k of a cell (the scaled Jacobian; negative at a reflex corner) after the
+// map T and in physical space, from one pair of edge differences: sin(angle) =
+// cross(e_next, e_prev) / (|e_next| |e_prev|), no trigonometry.
+void corner_sines(const Mesh& m, const Cell& cell, int k, const Mat2& T, double& sine_T, double& sine_phys) {
+  const Vec2& p = m.nodes[cell.v[k]];
+  const Vec2 dn = m.nodes[cell.v[(k + 1) % cell.nv]] - p, dp = m.nodes[cell.v[(k + cell.nv - 1) % cell.nv]] - p;
+  const Vec2 en = T * dn, ep = T * dp;
+  const double d = en.norm() * ep.norm(), d_phys = dn.norm() * dp.norm();
+  sine_T = d > 0 ? cross2(en, ep) / d : -1.0;
+  sine_phys = d_phys > 0 ? cross2(dn, dp) / d_phys : -1.0;
+}
+
+// The smallest corner sines of the cells around node i (in T and physically), split into the
+// corners that moving x_i leaves unchanged (a quad's corner opposite i) and those it changes: a
+// guard re-evaluates only the latter (3 of a quad's 4 corners).
+struct StarSines {
+  double fixed_T = 1e300, fixed_phys = 1e300, moving_T = 1e300, moving_phys = 1e300;
+};
+StarSines star_sines(const Mesh& m, int i, const std::vector<int>& cells, const Mat2& T, bool moving_only,
+                     const StarSines& fixed = {}) {
+  StarSines s = fixed;
   for (int c : cells) {
     const Cell& cell = m.cells[c];
-    for (int k = 0; k < cell.nv; ++k) {
-      const Vec2& p = m.nodes[cell.v[k]];
-      const Vec2 en = T * (m.nodes[cell.v[(k + 1) % cell.nv]] - p), ep = T * (m.nodes[cell.v[(k + cell.nv - 1) % cell.nv]] - p);
-      const double d = en.norm() * ep.norm();
-      s = std::min(s, d > 0 ? cross2(en, ep) / d : -1.0);
+    const int n = cell.nv, k = local_index(cell, i);
+    for (int j = 0; j < n; ++j) {
+      const bool moving = !(n == 4 && j == (k + 2) % 4);
+      if (moving_only && !moving) continue;
+      double sT, sP;
+      corner_sines(m, cell, j, T, sT, sP);
+      double& mT = moving ? s.moving_T : s.fixed_T;
+      double& mP = moving ? s.moving_phys : s.fixed_phys;
+      mT = std::min(mT, sT);
+      mP = std::min(mP, sP);
     }
   }
   return s;
@@ -127,7 +149,10 @@ Topology build_topology(const Mesh& m) {
 template <class Accept>
 int guarded_move(Mesh& m, int i, const Vec2& xi, const Vec2& step, const std::vector<int>& cells,
                  int max_halvings, Accept&& accept) {
-  std::vector<char> was_valid(cells.size());
+  // (a node's star is a handful of cells: no allocation per move unless it is unusually large)
+  char small[32];
+  std::vector<char> large(cells.size() > sizeof small ? cells.size() : 0);
+  char* was_valid = large.empty() ? small : large.data();
   for (size_t k = 0; k < cells.size(); ++k) was_valid[k] = cell_valid(m, m.cells[cells[k]]);
   double f = 1.0;
   for (int h = 0; h <= max_halvings; ++h, f *= 0.5) {
@@ -286,6 +311,8 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
   // ideal corner edges (next, previous), counter-clockwise: a square's and an equilateral triangle's
   const Vec2 quad_e1(0, 1), tri_e1(0.5, std::sqrt(3.0) / 2);
   std::vector<Mat2> node_T(nn, Mat2::Identity()), cell_T(opt.cell_metric ? m.num_cells() : 0, Mat2::Identity());
+  // and their Gram matrices T^T T, which every corner term of the fit uses (set with T)
+  std::vector<Mat2> node_G(nn, Mat2::Identity()), cell_G(cell_T.size(), Mat2::Identity());
   // nodes to visit in a sweep: all in the first, then those with a cell-mate (or themselves)
   // that moved more than the tolerance in the sweep before (the others' fits are unchanged)
   std::vector<char> active(nn, 1), next(nn, 0);
@@ -316,8 +343,7 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
     // normal equations of sum over the corner terms |T_j (x_i - x_ref) - b|^2 in x_i
     Mat2 A = Mat2::Zero();
     Vec2 rhs = Vec2::Zero();
-    auto term = [&](const Mat2& Tj, const Vec2& xref, const Vec2& b) {
-      const Mat2 G = Tj.transpose() * Tj;
+    auto term = [&](const Mat2& Tj, const Mat2& G, const Vec2& xref, const Vec2& b) {
       A += G;
       rhs += G * xref + Tj.transpose() * b;
     };
@@ -334,6 +360,7 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
         const Vec2& xn = m.nodes[cell.v[(j + 1) % n]];
         const Vec2& xp = m.nodes[cell.v[(j + n - 1) % n]];
         const Mat2& Tj = opt.cell_metric ? cell_T[c] : node_T[cell.v[j]];
+        const Mat2& Gj = opt.cell_metric ? cell_G[c] : node_G[cell.v[j]];
         const Vec2 a0 = Tj * (xn - xj), a1 = Tj * (xp - xj);
         Vec2 z(0.5 * (a0.x() + e1.x() * a1.x() + e1.y() * a1.y()), 0.5 * (a0.y() + e1.x() * a1.y() - e1.y() * a1.x()));
         const double r = z.norm();
@@ -341,14 +368,14 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
         z *= std::clamp(r, lo, hi) / r;
         const Vec2 b0 = z, b1(z.x() * e1.x() - z.y() * e1.y(), z.x() * e1.y() + z.y() * e1.x());
         if (j == k) {  // |T_i (x_n - x_i) - b0|^2 + |T_i (x_p - x_i) - b1|^2
-          term(Tj, xn, -b0);
-          term(Tj, xp, -b1);
+          term(Tj, Gj, xn, -b0);
+          term(Tj, Gj, xp, -b1);
           size += (xn - xi).norm() + (xp - xi).norm();
           nsize += 2;
         } else if (j == (k + n - 1) % n) {  // i is the next node of corner j: |T_j (x_i - x_j) - b0|^2
-          term(Tj, xj, b0);
+          term(Tj, Gj, xj, b0);
         } else {  // i is the previous node of corner j
-          term(Tj, xj, b1);
+          term(Tj, Gj, xj, b1);
         }
       }
     }
@@ -367,13 +394,17 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
     }
     if (!(step.norm() > 0) || !std::isfinite(step.x()) || !std::isfinite(step.y())) return;
     const auto& cells = topo.node_cells[i];
-    const Mat2 I = Mat2::Identity();
-    const double before = cells_min_sine(m, cells, T), before_phys = cells_min_sine(m, cells, I);
+    // the guard: no corner sine of the star (in the metric, and physically) falls below the
+    // smaller of its smallest before the move and the bound; the corners opposite i are taken once
+    StarSines fixed = star_sines(m, i, cells, T, false);
+    const double before = std::min(fixed.fixed_T, fixed.moving_T), before_phys = std::min(fixed.fixed_phys, fixed.moving_phys);
+    fixed.moving_T = fixed.moving_phys = 1e300;
     // (kSineSlack: a wall node sliding along its wall leaves its neighbours' corners on the wall
     // unchanged but for rounding; without the slack rounding alone would decide such a move)
     const int h = guarded_move(m, i, xi, step, cells, opt.max_halvings, [&] {
-      return cells_min_sine(m, cells, T) >= std::min(before, opt.min_sine) - kSineSlack &&
-             cells_min_sine(m, cells, I) >= std::min(before_phys, opt.min_sine_physical) - kSineSlack;
+      const StarSines after = star_sines(m, i, cells, T, true, fixed);
+      return std::min(after.fixed_T, after.moving_T) >= std::min(before, opt.min_sine) - kSineSlack &&
+             std::min(after.fixed_phys, after.moving_phys) >= std::min(before_phys, opt.min_sine_physical) - kSineSlack;
     });
     const double d = count_move(local, h, step);
     if (d < 0) return;
@@ -386,10 +417,16 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
     if (metric) {  // each corner is fitted in the metric at its own node, or its cell's centroid (frozen for the sweep)
 #pragma omp parallel for schedule(static)
       for (int v = 0; v < nn; ++v)
-        if (!topo.node_cells[v].empty()) node_T[v] = metric(m.nodes[v]);
+        if (!topo.node_cells[v].empty()) {
+          node_T[v] = metric(m.nodes[v]);
+          node_G[v] = node_T[v].transpose() * node_T[v];
+        }
       if (opt.cell_metric) {
 #pragma omp parallel for schedule(static)
-        for (int c = 0; c < m.num_cells(); ++c) cell_T[c] = metric(cell_centroid(m, c));
+        for (int c = 0; c < m.num_cells(); ++c) {
+          cell_T[c] = metric(cell_centroid(m, c));
+          cell_G[c] = cell_T[c].transpose() * cell_T[c];
+        }
       }
     }
     for (const std::vector<int>& nodes : colours) {
