@@ -96,14 +96,19 @@ std::pair<double, double> parse_range(const std::string& s) {
 }
 
 Window mesh_bounds(const Mesh& m) {
-  if (m.nodes.empty()) return {};
+  // what is drawn: the cells' vertices and curved control points, not nodes no cell uses (a
+  // Gmsh file keeps the geometry's points; one far away shrank the mesh to a corner)
   Window w{1e300, -1e300, 1e300, -1e300};
-  for (const auto& p : m.nodes) {
+  auto add = [&](const Vec2& p) {
     w.x0 = std::min(w.x0, p.x());
     w.x1 = std::max(w.x1, p.x());
     w.y0 = std::min(w.y0, p.y());
     w.y1 = std::max(w.y1, p.y());
-  }
+  };
+  for (const Cell& c : m.cells)
+    for (int k = 0; k < c.nv; ++k) add(m.nodes[c.v[k]]);
+  for (const Vec2& p : m.curved.points) add(p);
+  if (!(w.x1 >= w.x0)) return {};
   if (!(w.x1 > w.x0)) w.x1 = w.x0 + 1;
   if (!(w.y1 > w.y0)) w.y1 = w.y0 + 1;
   return w;

@@ -42,7 +42,8 @@ struct Window {
 Window parse_window(const std::string& s);
 /// Parses a colour range "lo,hi" (finite, lo < hi). Throws InputError otherwise.
 std::pair<double, double> parse_range(const std::string& s);
-/// Bounding box of the mesh nodes.
+/// Bounding box of what is drawn: the cells' vertices and curved control points (nodes that no
+/// cell uses are left out).
 Window mesh_bounds(const Mesh& m);
 
 enum class GlyphStyle { Cross, Parallelogram };

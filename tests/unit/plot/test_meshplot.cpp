@@ -88,6 +88,22 @@ TEST_CASE("window and range parsing") {
   CHECK_THROWS_AS(parse_glyph("arrow"), InputError);
 }
 
+TEST_CASE("the picture's bounds: the cells and their curved edges, not nodes no cell uses") {
+  Mesh m = make_structured_quads(2, 2);
+  m.nodes.emplace_back(50, -20);  // a geometry point Gmsh kept (was: the mesh drawn in a corner)
+  Window w = mesh_bounds(m);
+  CHECK(w.x0 == 0);
+  CHECK(w.x1 == 1);
+  CHECK(w.y0 == 0);
+  CHECK(w.y1 == 1);
+  m.curved.order = 2;  // a control point bulging below y = 0 widens the box
+  m.curved.points.assign(9 * m.num_cells(), Vec2(0.5, 0.5));
+  m.curved.points[1] = Vec2(0.25, -0.1);
+  w = mesh_bounds(m);
+  CHECK(w.y0 == doctest::Approx(-0.1));
+  CHECK(w.x1 == 1);
+}
+
 TEST_CASE("frame vectors are the columns of V = M^-1 (eq. 3.11, 3.13)") {
   const double theta = 0.5236, h1 = 0.01, h2 = 0.1;
   CellField f = frame_field(1, theta, h1, h2);
