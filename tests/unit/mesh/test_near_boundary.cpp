@@ -1,6 +1,7 @@
 // Boundary edges lying on other boundary edges: blocks whose shared nodes were not merged.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <string>
 
 #include "mesh/near_boundary.hpp"
@@ -44,13 +45,10 @@ TEST_CASE("the same halves merged, or a 2:1 interface: no warning") {
   // a coarse cell beside two fine ones: the hanging node's half-edges are interior faces
   Mesh h;
   h.nodes = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {1, 0.5}, {1.5, 0}, {1.5, 0.5}, {1.5, 1}};
-  Cell c;
-  c.v = {0, 1, 2, 3};
-  h.cells.push_back(c);
-  c.v = {1, 5, 6, 4};
-  h.cells.push_back(c);
-  c.v = {4, 6, 7, 2};
-  h.cells.push_back(c);
+  for (const std::array<int, 4>& v : {std::array<int, 4>{0, 1, 2, 3}, {1, 5, 6, 4}, {4, 6, 7, 2}}) {
+    h.cells.emplace_back();
+    h.cells.back().v = v;
+  }
   validate_mesh(h, "hanging.msh");
   CHECK(boundary_warnings(h).empty());
 }
