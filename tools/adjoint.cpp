@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
       auto ph = tool.phase("read");
       ValidateOptions v = ValidateOptions::cells(CellKind::Quads);
       v.allow_curved = true;  // the DWR uses only the DG discretisation, which integrates on the curved map
-      mesh = read_valid_msh(in, v);
+      mesh = tool.read_mesh(in, v);
       U = read_solution_field(mesh, field, in, p);
       check_degree(p, in + ": the solution's degree p =", kMaxAdjointDegree);  // the fine space is p + 1
       cs = load_case(case_path);

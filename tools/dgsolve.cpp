@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
       auto ph = tool.phase("read");
       ValidateOptions v = ValidateOptions::cells(CellKind::Quads);
       v.allow_curved = true;
-      mesh = read_valid_msh(in, v);
+      mesh = tool.read_mesh(in, v);
       cs = load_case(case_path);
       check_case_boundaries(cs, mesh);
     }

@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
       auto ph = tool.phase("read");
       ValidateOptions vo = ValidateOptions::cells(CellKind::Quads);
       vo.allow_curved = true;  // reconstructed on the curved map (docs/curved.md)
-      sol = read_valid_msh(in, vo);
+      sol = tool.read_mesh(in, vo);
       if (!exact.empty()) {
         sol.set_field(interpolate_dg(sol, p_exact, [&](double x, double y) {
           const double v = evaluate(e, x, y);

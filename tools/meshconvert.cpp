@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
     Mesh m;
     {
       auto ph = tool.phase("read");
-      m = read_valid_msh(in, opt);
+      m = tool.read_mesh(in, opt);
     }
     if (order == 1 && geometry.empty() && m.is_curved()) m.curved = CurvedGeometry{};
     if (jitter.fraction > 0) {

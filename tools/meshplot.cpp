@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
       auto ph = tool.phase("read");
       ValidateOptions v;
       v.allow_curved = true;  // curved edges drawn by sampling the map; fills use the vertex view
-      m = read_valid_msh(in, v);
+      m = tool.read_mesh(in, v);
     }
     plot::check_plot_field(m, field, in);
     const bool is_dg = !field.empty() && !m.cell_field(field) && m.cell_node_field(field);

@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     Frame frame;
     {
       auto ph = tool.phase("read");
-      m = read_valid_msh(in, opt);
+      m = tool.read_mesh(in, opt);
       if (!frame_path.empty()) frame = read_frame(frame_path);
     }
     QualityReport r;

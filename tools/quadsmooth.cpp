@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
     Frame frame;
     {
       auto ph = tool.phase("read");
-      m = read_valid_msh(in);
+      m = tool.read_mesh(in);
       if (!frame_path.empty()) frame = read_frame(frame_path);
     }
     if (!frame_path.empty()) {

@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
     Mesh tri;
     {
       auto ph = tool.phase("read");
-      tri = read_valid_msh(in, ValidateOptions::cells(CellKind::Triangles));
+      tri = tool.read_mesh(in, ValidateOptions::cells(CellKind::Triangles));
       const bool has_frame = !frame_path.empty() || tri.cell_field("Vinv");
       if (matching.empty()) matching = has_frame ? "metric" : "blossom";
       if (matching == "metric") {

@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
     Mesh m;
     {
       auto ph = tool.phase("read");
-      m = read_valid_msh(in, ValidateOptions::cells(CellKind::Quads));
+      m = tool.read_mesh(in, ValidateOptions::cells(CellKind::Quads));
     }
     RefineStats s;
     Mesh r;

@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
     Mesh shape, dwrmesh;
     {
       auto ph = tool.phase("read");
-      shape = read_valid_msh(in);
+      shape = tool.read_mesh(in);
       if (!dwr.empty()) {
         dwrmesh = read_valid_msh(dwr);
       }

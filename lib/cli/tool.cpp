@@ -17,6 +17,8 @@
 #include "core/file_name.hpp"
 #include "core/path_guard.hpp"
 #include "core/signal_cleanup.hpp"
+#include "io/msh.hpp"
+#include "mesh/near_boundary.hpp"
 
 namespace quadapt {
 
@@ -157,6 +159,15 @@ void Tool::declare_report() {
       throw InputError(report_path_, "--report writes a JSON report, not a " + ext.substr(1) +
                                          " file: give it a .json name");
   }
+}
+
+Mesh Tool::read_mesh(const std::string& path, const ValidateOptions& v) {
+  Mesh m = read_valid_msh(path, v);
+  for (const std::string& w : boundary_warnings(m)) {
+    log("warning: " + path + ": " + w);
+    report_["warnings"].push_back(path + ": " + w);
+  }
+  return m;
 }
 
 void Tool::log(const std::string& msg) const {

@@ -26,6 +26,8 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "mesh/mesh.hpp"
+#include "mesh/validate.hpp"
 
 namespace quadapt {
 
@@ -61,6 +63,12 @@ class Tool {
   /// MSH text that ParaView cannot read), naming meshconvert for the conversion. Names without
   /// an extension, "-", devices and FIFOs are accepted.
   void output_mesh(const std::string& path);
+
+  /// How a tool reads an input mesh: read_valid_msh(path, v) (exit 2 on what it refuses), then
+  /// the checks that only warn (mesh/near_boundary.hpp: boundary edges lying on other boundary
+  /// edges). Each warning is logged as "warning: PATH: ..." (not with -q, like every log line)
+  /// and appended to report()["warnings"], a list present only when there is a warning.
+  Mesh read_mesh(const std::string& path, const ValidateOptions& v = {});
 
   /// The JSON report. Put computed figures at top level (e.g. report()["dofs"] = n);
   /// "tool", "version", "command", "options", "inputs", "outputs", "timings", "threads",

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Bad input: non-zero exit (2), ONE line on stderr naming the file and the problem, nothing
-# written (no output, no report, no temporary file), for meshconvert and meshquality.
+# written (no output, no report, no temporary file), for meshconvert and meshquality; a
+# suspicious but valid input (unmerged blocks): exit 0 and one warning.
 set -euo pipefail
 S=$QUADAPT_SOURCE_DIR
 T=$(mktemp -d)
@@ -141,4 +142,60 @@ set -e
 [ $rc -eq 2 ] || { echo "overwriting the input: exit $rc"; exit 1; }
 cmp "$good" "$T/in/copy.msh"
 echo "meshconvert, output = input: $(cat "$T/stderr")"
+
+# Suspicious but valid: two blocks whose shared nodes were not merged, 1e-6 apart (Gmsh without
+# Coherence Mesh;) read as a domain with a slit. Exit 0, the output written, and ONE warning line
+# naming the file and the fix (mesh/near_boundary.hpp); none with -q, but the report has it.
+cat > "$T/in/unmerged.msh" <<'MSH'
+$MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+12
+1 0 0 0
+2 0.5 0 0
+3 0 0.5 0
+4 0.5 0.5 0
+5 0 1 0
+6 0.5 1 0
+7 0.500001 0 0
+8 1 0 0
+9 0.500001 0.5 0
+10 1 0.5 0
+11 0.500001 1 0
+12 1 1 0
+$EndNodes
+$Elements
+4
+1 3 2 1 1 1 2 4 3
+2 3 2 1 1 3 4 6 5
+3 3 2 1 2 7 8 10 9
+4 3 2 1 2 9 10 12 11
+$EndElements
+MSH
+warning="warning: $T/in/unmerged.msh: 4 boundary edges lie on other boundary edges (2 pairs, at most 1.000e-06 apart"
+for tool in meshconvert meshquality; do
+  args=("$T/in/unmerged.msh")
+  [ "$tool" = meshconvert ] && args+=(-o "$T/out/unmerged.msh")
+  "$tool" "${args[@]}" > "$T/stdout" 2> "$T/stderr" || { echo "$tool unmerged: exit $?"; cat "$T/stderr"; exit 1; }
+  [ "$(grep -cF "$warning" "$T/stderr")" -eq 1 ] || { echo "$tool unmerged: not one warning:"; cat "$T/stderr"; exit 1; }
+  grep -qF "Coherence Mesh;" "$T/stderr" || { echo "$tool unmerged: the warning names no fix: $(cat "$T/stderr")"; exit 1; }
+  echo "$tool unmerged: $(grep -F "$warning" "$T/stderr")"
+done
+test -s "$T/out/unmerged.msh"
+python3 - "$T/out/unmerged.json" "$T/stdout" "$T/in/unmerged.msh" <<'PY'
+import json, sys
+for report in sys.argv[1:3]:
+    w = json.load(open(report))["warnings"]
+    assert len(w) == 1 and w[0].startswith(sys.argv[3] + ": 4 boundary edges lie on"), w
+PY
+meshconvert -q "$T/in/unmerged.msh" -o "$T/out/unmerged_q.msh" 2> "$T/stderr"
+[ ! -s "$T/stderr" ] || { echo "meshconvert -q unmerged: stderr not empty: $(cat "$T/stderr")"; exit 1; }
+cmp "$T/out/unmerged.msh" "$T/out/unmerged_q.msh"
+grep -q '"warnings"' "$T/out/unmerged_q.json" || { echo "meshconvert -q unmerged: no warnings in the report"; exit 1; }
+# the same blocks merged (the right block's cells on the left block's nodes 2, 4, 6): no warning
+sed -e 's/^3 3 2 1 2 7 8 10 9$/3 3 2 1 2 2 8 10 4/' -e 's/^4 3 2 1 2 9 10 12 11$/4 3 2 1 2 4 10 12 6/' \
+  "$T/in/unmerged.msh" > "$T/in/merged.msh"
+meshconvert "$T/in/merged.msh" -o "$T/out/merged.msh" 2> "$T/stderr"
+! grep -q "warning" "$T/stderr" || { echo "meshconvert merged: $(cat "$T/stderr")"; exit 1; }
 echo "io_bad_input: ok"
