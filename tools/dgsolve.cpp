@@ -73,10 +73,7 @@ int main(int argc, char** argv) {
     }
     const std::vector<GroupCondition> conditions = group_conditions(cs, mesh);
     tool.log("boundaries: " + conditions_text(conditions));
-    if (const std::string w = free_edge_warning(cs, mesh, conditions, in); !w.empty()) {
-      tool.log("warning: " + w);
-      tool.report()["warnings"].push_back(w);
-    }
+    if (const std::string w = free_edge_warning(cs, mesh, conditions, in); !w.empty()) tool.warn(w);
     if (mesh.cell_field("Vinv"))  // a frame file given as the mesh: legal, but rarely meant
       tool.log("note: " + in + " carries a frame (Vinv): solving on its cells, the mesh the frame was made on "
                "(the mesh the frame asks for is lpcvt's or bamgquad's output)");

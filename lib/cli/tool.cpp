@@ -163,11 +163,13 @@ void Tool::declare_report() {
 
 Mesh Tool::read_mesh(const std::string& path, const ValidateOptions& v) {
   Mesh m = read_valid_msh(path, v);
-  for (const std::string& w : boundary_warnings(m)) {
-    log("warning: " + path + ": " + w);
-    report_["warnings"].push_back(path + ": " + w);
-  }
+  for (const std::string& w : boundary_warnings(m)) warn(path + ": " + w);
   return m;
+}
+
+void Tool::warn(const std::string& msg) {
+  log("warning: " + msg);
+  report_["warnings"].push_back(msg);
 }
 
 void Tool::log(const std::string& msg) const {

@@ -70,6 +70,9 @@ class Tool {
   /// and appended to report()["warnings"], a list present only when there is a warning.
   Mesh read_mesh(const std::string& path, const ValidateOptions& v = {});
 
+  /// A warning: logged as "warning: MSG" (not with -q) and appended to report()["warnings"].
+  void warn(const std::string& msg);
+
   /// The JSON report. Put computed figures at top level (e.g. report()["dofs"] = n);
   /// "tool", "version", "command", "options", "inputs", "outputs", "timings", "threads",
   /// "peak_memory_mb" are filled in by the runner.
