@@ -191,6 +191,7 @@ else
   # steps after 0 straight-sided, silently)
   q="$(command -v meshquality >/dev/null 2>&1 && meshquality -q "$MESH" 2>/dev/null | grep -o '"geometric_order": *[0-9]*' | grep -o '[0-9]*$' || true)"
   if [ -n "$q" ] && [ "$q" -gt 1 ]; then
+    curved_start=yes  # step 0's solution is curved: the frame tools take its vertex view
     case "$METHOD" in
       uniform|fixed-fraction)
         die "MESH '$MESH' is curved (geometric order $q) and no GEOMETRY is given: refine splits straight-sided cells only; start from its straight view (meshconvert $MESH --order 1 -o STRAIGHT.msh), with GEOMETRY=FILE.geo to keep the boundary curved (docs/curved.md)" ;;
@@ -469,16 +470,23 @@ while :; do
           refine "$ind" --fraction "$FRACTION" --by "$FF_BY" ${geo[@]+"${geo[@]}"} -o "$d/adapted.msh"
       fi ;;
     lpcvt|bamg)
-      sol="$d/sol.msh" geo=()
-      if [ -n "$GEOMETRY" ]; then  # the frame tools work on the vertex view of the curved solution
-        sol="$d/sol-straight.msh" geo=(--geometry "$GEOMETRY")
+      sol="$d/sol.msh" geo=() curved=""
+      [ -n "$GEOMETRY" ] && geo=(--geometry "$GEOMETRY") curved=yes
+      [ "$k" = 0 ] && [ "${curved_start:-}" = yes ] && curved=yes  # a curved MESH without GEOMETRY
+      if [ -n "$curved" ]; then  # the frame tools work on the vertex view of the curved solution
+        sol="$d/sol-straight.msh"
         run_tool "$d" straight "$sol" "$d/sol.msh" -- meshconvert "$d/sol.msh" --order 1 -o "$sol"
       fi
       run_tool "$d" estimate-frame "$d/shape.msh" "$sol" -- estimate-frame "$sol" -o "$d/shape.msh"
       if [ "$MODE" = goal ]; then
         run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
-        run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" "$d/dwr.msh" -- \
-          size-solve "$d/shape.msh" --growth "$GROWTH" --dwr "$d/dwr.msh" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} \
+        dwr="$d/dwr.msh"
+        if [ -n "$curved" ]; then  # size-solve too (was: refused the curved indicator file, every step 0)
+          dwr="$d/dwr-straight.msh"
+          run_tool "$d" straight-dwr "$dwr" "$d/dwr.msh" -- meshconvert "$d/dwr.msh" --order 1 -o "$dwr"
+        fi
+        run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" "$dwr" -- \
+          size-solve "$d/shape.msh" --growth "$GROWTH" --dwr "$dwr" ${MAX_ANISO:+--max-anisotropy "$MAX_ANISO"} \
             ${R_MAX:+--r-max "$R_MAX"} ${C_MAX:+--c-max "$C_MAX"} ${SIZE_GRADATION:+--gradation "$SIZE_GRADATION"} -o "$d/frame.msh"
       else
         run_tool "$d" size-solve "$d/frame.msh" "$d/shape.msh" -- \
