@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
         if (penalty_option->count() == 0)
           opt.dg.penalty_factor = *solved;
         else if (opt.dg.penalty_factor != *solved)
-          tool.log("warning: --penalty " + as_typed(opt.dg.penalty_factor) + " is not the factor " + in +
+          tool.warn("--penalty " + as_typed(opt.dg.penalty_factor) + " is not the factor " + in +
                    " was solved with (" + as_typed(*solved) +
                    "): the fine space's penalty is not the primal's; leave --penalty out to take SOL's");
       }
@@ -121,12 +121,12 @@ int main(int argc, char** argv) {
     // a small factor makes the fine space's penalty too weak for its indicators (a reviewer's
     // --penalty 0.5 on a solution solved at 20: estimate 0.24 for a true error 9e-9, exit 0)
     if (opt.dg.penalty_factor < 5)
-      tool.log("warning: --penalty " + as_typed(opt.dg.penalty_factor) +
+      tool.warn("--penalty " + as_typed(opt.dg.penalty_factor) +
                " is below 5: the indicators lose their meaning (docs/adjoint.md); give the factor dgsolve "
                "solved with (default 20)");
     // accepted (the thesis's S-shock and boundary layer with diffusion do it), but rarely meant
     if (cs.is_dirichlet(cs.functional_boundary))
-      tool.log("warning: the functional boundary '" + cs.functional_boundary + "' has Dirichlet data in " + case_path +
+      tool.warn("the functional boundary '" + cs.functional_boundary + "' has Dirichlet data in " + case_path +
                ": J = integral of u_h^2 there measures the weak boundary condition's mismatch, so a goal loop "
                "refines along that boundary rather than where the solution's error is; put the functional on a "
                "boundary without Dirichlet data (docs/adjoint.md, Limitations)");
@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
     tool.log("adjoint solved with " + r.solve.solver + " (" + std::to_string(r.solve.iterations) +
              " iterations); estimate " + sci(r.estimate) + ", true error " +
              sci(r.functional_error));
-    if (const std::string note = fallback_note(r.solve); !note.empty()) tool.log("warning: " + note);
+    if (const std::string note = fallback_note(r.solve); !note.empty()) tool.warn(note);
 
     {
       auto ph = tool.phase("write");

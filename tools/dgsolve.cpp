@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
     rep["timings"]["postprocess"] = r.t_postprocess;
     tool.log("solved with " + r.solve.solver + " in " + sci(r.t_solve) + " s; L2 error " +
              sci(r.l2_error));
-    if (const std::string note = fallback_note(r.solve); !note.empty()) tool.log("warning: " + note);
+    if (const std::string note = fallback_note(r.solve); !note.empty()) tool.warn(note);
 
     {
       auto ph = tool.phase("write");

@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
         bg = frame_background(f, job, tool.report(), log);
         check_point_budget(bg, job, in);
         if (const auto& w = tool.report()["frame_span"]["warning"]; w.is_string())
-          tool.log("warning: " + in + ": " + w.get<std::string>());
+          tool.warn(in + ": " + w.get<std::string>());
       }
     }
     LpcvtResult r;
@@ -201,14 +201,14 @@ int main(int argc, char** argv) {
     const double target = tool.report().value("target_cells", 0.0);
     const double expected = tool.report().value("expected_cells", 0.0);
     if (target > 0 && (expected > 1.5 * target || expected < target / 1.5))
-      tool.log("warning: about " + std::to_string(std::lround(expected)) + " cells after recombine for the frame's " +
+      tool.warn("about " + std::to_string(std::lround(expected)) + " cells after recombine for the frame's " +
                std::to_string(std::lround(target)) + " (ratio " + sci(expected / target) +
                "): the frame's sizes cannot be met on this domain (elements longer than the domain in some direction?)");
     if (r.metric_flips_capped)
-      tool.log("warning: the output's metric flips stopped at their cap (" + std::to_string(r.metric_flips) +
+      tool.warn("the output's metric flips stopped at their cap (" + std::to_string(r.metric_flips) +
                "): the triangles are not Delaunay in the frame's metric (a frame stretched far beyond 1000:1?)");
     if (!r.converged) {
-      tool.log("warning: not converged (" + r.stop + "); the mesh is valid but the points are not optimal");
+      tool.warn("not converged (" + r.stop + "); the mesh is valid but the points are not optimal");
       if (strict) throw PartialFailure("not converged: " + r.stop + " (mesh written)");
     }
   });

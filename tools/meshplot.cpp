@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
     r["window"] = {s.window.x0, s.window.x1, s.window.y0, s.window.y1};
     r["picture_px"] = {s.width_px, s.height_px};
     if (s.cells_drawn == 0 && !window.empty())
-      tool.log("warning: --window " + window + " holds none of " + in + "'s cells: " + out + " is empty");
+      tool.warn("--window " + window + " holds none of " + in + "'s cells: " + out + " is empty");
     tool.log("wrote " + out + " (" + std::to_string(s.cells_drawn) + " cells)");
   });
 }

@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
       // (a few boundary cells of a curved domain's mesh may lie just outside its polygonal frame:
       // more than 1 % is another domain's frame)
       if (outside > 0.01 * m.num_cells())
-        tool.log("warning: " + std::to_string(outside) + " of " + std::to_string(m.num_cells()) + " cells of " + in +
+        tool.warn(std::to_string(outside) + " of " + std::to_string(m.num_cells()) + " cells of " + in +
                  " have their centroid outside " + frame_path +
                  "'s background (the nearest frame cell is used there): is it the frame of this mesh?");
     }
