@@ -54,4 +54,20 @@ for out in "$T/nodir/c.png" "$T/c.csv"; do
   [ $rc -eq 2 ] && [ "$(wc -l <<<"$err")" -eq 1 ] && grep -q "^convergence.py: $out: " <<<"$err" || { echo "FAIL: -o $out: exit $rc: $err" >&2; exit 1; }
   [ ! -e "$out" ] || { echo "FAIL: -o $out written" >&2; exit 1; }
 done
+# goal mode: the guide line's order is 2p with diffusion (SIPG) and 2p + 1 for pure advection,
+# read from step-0/sol.msh's $SolvedCase (was: 2p + 1 always; diffusion cases measured ~2p)
+mkdir -p "$run/step-0"
+guide() {  # guide DIFFUSION -> the guide line's label
+  printf '$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$SolvedCase\n{"advection":[1.0,0.0],"diffusion":%s,"exact":"x"}\n$EndSolvedCase\n' "$1" > "$run/step-0/sol.msh"
+  $PY - "$S" "$run" <<'PY'
+import sys
+S, run = sys.argv[1], sys.argv[2]
+sys.path.insert(0, S + "/scripts/plot")
+import convergence
+fig, ax, _ = convergence.make_figure(["--p", "2", "--mode", "goal", "-o", "x.png", "lpcvt=" + run + "/convergence.csv"])
+print([l.get_label() for l in ax.get_lines() if l.get_label().startswith("$")][0])
+PY
+}
+[ "$(guide '[[0.01,0.0],[0.0,0.01]]')" = '$\mathcal{O}(h^{4})$' ] || { echo "FAIL: diffusion guide: $(guide '[[0.01,0.0],[0.0,0.01]]')" >&2; exit 1; }
+[ "$(guide '[[0.0,0.0],[0.0,0.0]]')" = '$\mathcal{O}(h^{5})$' ] || { echo "FAIL: advection guide" >&2; exit 1; }
 echo "convergence_plot: ok"
