@@ -24,12 +24,20 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// 1000 eps || |A| |x| ||: a residual below this is at the rounding level of computing A x.
-double rounding_floor(const Op& absA, const VectorXd& x) {
-  if (!absA) return 0.0;
+/// Whether the residual r = b - A x is at the rounding level of computing A x, row by row
+/// (componentwise backward error, Oettli-Prager): |r_i| <= 1000 eps (|A| |x| + |b|)_i for every
+/// row i. Row by row, not in norm: a few rows of large entries (the penalty of a very thin cell,
+/// sigma ~ 1/h) dominate || |A| |x| ||, and a normwise test then accepted residuals far above
+/// rounding everywhere else (relative residual 1.8e-4 on a mesh with one 1e-12-wide cell; an L2
+/// error 6.6x a direct solve's at p = 4).
+bool at_rounding_level(const Op& absA, const VectorXd& b, const VectorXd& x, const VectorXd& r) {
+  if (!absA) return false;
   VectorXd t;
   absA(x, t);
-  return 1000 * std::numeric_limits<double>::epsilon() * t.norm();
+  const double tol = 1000 * std::numeric_limits<double>::epsilon();
+  for (Eigen::Index i = 0; i < r.size(); ++i)
+    if (!(std::abs(r[i]) <= tol * (t[i] + std::abs(b[i])))) return false;
+  return true;
 }
 
 /// Restarted flexible GMRES(m) (Saad 1993): right preconditioning with the preconditioned
@@ -93,7 +101,7 @@ int gmres(const Op& A, const Op& absA, const Op& Minv, const VectorXd& b, Vector
     if (beta <= rtol * bnorm || beta == 0) break;
     // The Krylov estimate passed rtol but the true residual did not: accept it when it is at
     // the rounding level of A x (normwise backward error), or within 10 rtol.
-    if (std::abs(g[j]) <= rtol * bnorm && rounding_floor(absA, x) >= beta) break;
+    if (std::abs(g[j]) <= rtol * bnorm && at_rounding_level(absA, b, x, r)) break;
     if (beta <= 10 * rtol * bnorm && std::abs(g[j]) <= rtol * bnorm) break;
     if (beta > 0.9 * previous) break;  // stagnation: the caller judges the result
     if (give_up_early) {
@@ -102,7 +110,7 @@ int gmres(const Op& A, const Op& absA, const Op& Minv, const VectorXd& b, Vector
     }
   }
   res = beta / bnorm;
-  accepted = beta <= 10 * rtol * bnorm || beta <= rounding_floor(absA, x);
+  accepted = beta <= 10 * rtol * bnorm || at_rounding_level(absA, b, x, r);
   return it;
 }
 
@@ -243,7 +251,12 @@ bool solve_iterative(LinearSolverKind kind, const SparseMatrixCSC& A, const Bloc
     t0 = std::chrono::steady_clock::now();
     if (kind == LinearSolverKind::BicgstabBlockILU) {
       it = bicgstab(op, pre, b, x, opt.rtol, max_it, res);
-      accepted = res <= 10 * opt.rtol || res * bnorm <= rounding_floor(abs_op, x);
+      accepted = res <= 10 * opt.rtol;
+      if (!accepted) {
+        VectorXd ax;
+        op(x, ax);
+        accepted = at_rounding_level(abs_op, b, x, b - ax);
+      }
     } else {
       it = gmres(op, abs_op, pre, b, x, opt.rtol, max_it, opt.restart, res, accepted, give_up_early);
     }

@@ -7,9 +7,36 @@
 #include <queue>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "mesh/label.hpp"
 #include "mesh/topology.hpp"
 
 namespace quadapt {
+
+namespace {
+/// "" or, when the mesh's thinnest cell is under 1e-6 of its median thickness (twice the area
+/// over the longest edge), a note naming it: the penalty sigma ~ 1/h of such a cell makes the
+/// system numerically singular, which the solver alone blames on the boundary conditions.
+std::string thin_cell_note(const Mesh& mesh) {
+  const int n = mesh.num_cells();
+  if (n == 0) return "";
+  std::vector<double> h(n);
+  for (int c = 0; c < n; ++c) {
+    const Cell& cell = mesh.cells[c];
+    double longest = 0;
+    for (int k = 0; k < cell.nv; ++k)
+      longest = std::max(longest, (mesh.nodes[cell.v[(k + 1) % cell.nv]] - mesh.nodes[cell.v[k]]).norm());
+    h[c] = longest > 0 ? 2 * cell_area(mesh, c) / longest : 0;
+  }
+  const int thinnest = static_cast<int>(std::min_element(h.begin(), h.end()) - h.begin());
+  std::vector<double> sorted = h;
+  std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
+  const double median = sorted[n / 2];
+  if (!(h[thinnest] < 1e-6 * median)) return "";
+  return "; but the mesh's " + cell_label(mesh, thinnest) + " is " + sci(h[thinnest]) + " thick against a median of " +
+         sci(median) + ": a cell that thin makes the system numerically singular — remove or merge it";
+}
+}  // namespace
 
 namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -125,7 +152,11 @@ DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& o
     scale_system(A, b);
   else
     scale_system(B, b);
-  r.U = csc ? solve_linear(A, b, so, &r.solve) : solve_linear(B, b, so, &r.solve);
+  try {
+    r.U = csc ? solve_linear(A, b, so, &r.solve) : solve_linear(B, b, so, &r.solve);
+  } catch (const NumericalError& e) {
+    throw NumericalError(e.what() + thin_cell_note(mesh));
+  }
   r.t_solve = seconds_since(t0);
   if (!r.U.allFinite()) throw NumericalError("the DG solution is not finite (singular system?)");
   A = SparseMatrixCSC();

@@ -194,6 +194,41 @@ dgsolve "$T/thin10.msh" -c "$T/layer30.json" -p 2 -o "$T/th.msh" 2> "$T/th.err" 
 grep -q "warning: the iterative solvers did not converge" "$T/th.err" || fail "no fall-back warning: $(cat "$T/th.err")"
 python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['solver'].endswith('umfpack') and any('did not converge' in w for w in r['warnings']), r.get('warnings')" "$T/th.json" ||
   fail "fall-back warning not in the report"
+thin_grid 1e-12 "$T/thin12.msh"
+rc=0; dgsolve -q "$T/thin12.msh" -c "$T/layer30.json" -p 2 -o "$T/th12.msh" 2> "$T/th12.err" || rc=$?
+# was: exit 0, GMRES accepted at relative residual 1.8e-4 (its normwise rounding floor was the thin
+# cell's penalty rows), the functional 2x off
+[ $rc = 2 ] || fail "thin 1e-12: exit $rc: $(cat "$T/th12.err")"
+grep -q "is 1.99[0-9]e-12 thick against a median of 1.250e-01: a cell that thin makes the system numerically singular" "$T/th12.err" ||
+  fail "thin 1e-12 message: $(cat "$T/th12.err")"
+[ ! -e "$T/th12.msh" ] || fail "thin 1e-12: output written"
+# --- the rounding floor is checked row by row: p = 4 on Gmsh's transfinite 96 x 32 rectangle, an
+# anisotropic D (a new-user review's case). With the normwise floor GMRES stopped at relative
+# residual 8.4e-13 with L2 error 5.34e-10, 6.6x UMFPACK's 8.04e-11 (and rising under refinement).
+if command -v gmsh >/dev/null; then
+  cat > "$T/rect.geo" <<'EOF'
+SetFactory("OpenCASCADE");
+Rectangle(1) = {0, 0, 0, 3, 1};
+Transfinite Curve{1, 3} = 97;
+Transfinite Curve{2, 4} = 33;
+Transfinite Surface{1};
+Recombine Surface{1};
+Physical Curve("bottom", 1) = {1};
+Physical Curve("outlet", 2) = {2};
+Physical Curve("top", 3) = {3};
+Physical Curve("inlet", 4) = {4};
+Physical Surface("domain", 5) = {1};
+EOF
+  gmsh -2 -v 0 "$T/rect.geo" -format msh41 -o "$T/rect32.msh"
+  mkcase aniso '{"diffusion": [[1, 0.4], [0.4, 0.2]], "exact": "sin(pi*x/3)*exp(y) + x*y", "dirichlet": ["inlet", "bottom", "top"], "functional": {"boundary": "outlet"}}'
+  dgsolve -q "$T/rect32.msh" -c "$T/aniso.json" -p 4 -o "$T/r4.msh"
+  dgsolve -q "$T/rect32.msh" -c "$T/aniso.json" -p 4 --solver umfpack -o "$T/r4u.msh"
+  python3 - "$T/r4.json" "$T/r4u.json" <<'EOF'
+import json, sys
+a, u = (json.load(open(f)) for f in sys.argv[1:3])
+assert a["l2_error"] <= 1.2 * u["l2_error"], (a["l2_error"], u["l2_error"], a["solver_relative_residual"])
+EOF
+fi
 # --- a frame file given as the mesh (a loop's step-K/frame.msh for its mesh.msh): solved on its
 # cells, with a note that says what it is (was: silent); a plain mesh gets no note
 dgsolve "$SRC/tests/fixtures/philip/input_ss15_fb_p1_3.msh" -c "$CASES/smooth.json" -p 1 -o "$T/fr.msh" 2> "$T/fr.err"
