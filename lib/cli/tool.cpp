@@ -62,6 +62,14 @@ nlohmann::json typed_option_value(const CLI::Option& opt, const std::vector<std:
 
 }  // namespace
 
+/// Whether the file at path is a quadapt report: a JSON object with a "tool" string.
+static bool is_tool_report(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  return j.is_object() && j.contains("tool") && j["tool"].is_string();
+}
+
 std::string default_report_path(const std::string& output) {
   const std::filesystem::path p(output);
   if (lower_extension(output) == ".msh") return std::filesystem::path(p).replace_extension(".json").string();
@@ -146,9 +154,16 @@ void Tool::declare_report() {
   // named in a refusal: `dgsolve M -c X.json -o X.msh` would write its report X.json over the case
   if (report_explicit_)
     protect_output(report_path_, "the report (--report)", "give --report another path");
-  else
-    protect_output(report_path_, "the report written beside the output " + (outputs_.empty() ? std::string() : outputs_.front()),
-                   "give --report another path, or -o another name");
+  else {
+    const std::string beside = "the report written beside the output " + (outputs_.empty() ? std::string() : outputs_.front());
+    protect_output(report_path_, beside, "give --report another path, or -o another name");
+    // a file of the user's that happens to have the report's name (`-o mm1.msh` beside a case
+    // file mm1.json) is not replaced unasked: only an earlier report (a JSON object with "tool")
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(report_path_, ec) && !is_tool_report(report_path_))
+      throw InputError(report_path_, "exists and is not a quadapt report; " + beside +
+                                         " would replace it: give --report another path, or -o another name");
+  }
   // a report named like a file the toolkit reads or writes (`--report keep.msh`, a picture, the loop's
   // table, Gmsh's options) would overwrite it with JSON (checked after the refusals above, which name
   // the worse mistake: an input, a missing folder)

@@ -202,6 +202,16 @@ for f in pic.svg tab.csv o.msh.opt; do
   [ ! -e r5.msh ] || fail "--report $f: wrote r5.msh"
 done
 [ "$(cat pic.svg)" = '<svg/>' ] || fail "--report pic.svg changed pic.svg"
+# a user's file that has the default report's name is not replaced (`-o mm1.msh` beside a case
+# file mm1.json replaced it with the report: a new-user review); an earlier report is
+cp case.json mm1.json
+expect_exit 2 "mm1.json: exists and is not a quadapt report; the report written beside the output mm1.msh would replace it" \
+  dgsolve plain.msh -c case.json -p 1 -o mm1.msh
+same_bytes mm1.json case.json
+[ ! -e mm1.msh ] || fail "dgsolve wrote mm1.msh before refusing to replace mm1.json"
+dgsolve -q plain.msh -c case.json -p 1 -o mm2.msh
+dgsolve -q plain.msh -c case.json -p 1 -o mm2.msh || fail "an earlier report was not replaced"
+dgsolve -q plain.msh -c case.json -p 1 -o mm1.msh --report mm1r.json || fail "--report beside a user's file"
 # the outputs written, the report not (a full device): exit 1, "the outputs were written"
 if [ -w /dev/full ]; then
   expect_exit 1 "" meshconvert sol.msh -o full.msh --report /dev/full
