@@ -110,6 +110,12 @@ class FrameSampler {
   int cell(const Vec2& x, bool* inside = nullptr) const;
   /// Piecewise-constant M (oriented) at x.
   Mat2 at(const Vec2& x, bool* inside = nullptr) const { return oriented_[cell(x, inside)]; }
+  /// The same, for a point that moves a little between calls: `hint` (in/out; -1 at first) is
+  /// the cell of the last call, kept while x is well inside it (CellLocator::well_inside).
+  Mat2 at(const Vec2& x, int& hint) const {
+    if (!locator_.well_inside(hint, x)) hint = cell(x);
+    return oriented_[hint];
+  }
 
  private:
   std::vector<Mat2> oriented_;

@@ -97,6 +97,17 @@ double CellLocator::distance(int c, const Vec2& x) const {
   return d;
 }
 
+bool CellLocator::well_inside(int c, const Vec2& x) const {
+  if (c < 0 || c >= static_cast<int>(m_.cells.size())) return false;
+  const Cell& cell = m_.cells[c];
+  for (int i = 0; i < cell.nv; ++i) {
+    const Vec2& a = m_.nodes[cell.v[i]];
+    const Vec2 ab = m_.nodes[cell.v[(i + 1) % cell.nv]] - a, ax = x - a;
+    if (!(ab.x() * ax.y() - ab.y() * ax.x() > 1e-9 * ab.squaredNorm())) return false;
+  }
+  return true;
+}
+
 int CellLocator::locate(const Vec2& x) const {
   if (m_.cells.empty()) return -1;
   const double fx = (x.x() - lo_.x()) / cell_size_.x(), fy = (x.y() - lo_.y()) / cell_size_.y();

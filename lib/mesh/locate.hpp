@@ -19,6 +19,11 @@ class CellLocator {
   int locate(const Vec2& x) const;
   /// The cell containing x, else the cell whose boundary is nearest to x.
   int locate_or_nearest(const Vec2& x) const;
+  /// Whether x lies in cell c's interior away from its edges: at a distance above 1e-9 times each
+  /// edge's length from its line (a counter-clockwise convex cell). Such a point lies in no other
+  /// cell of a conforming mesh, so a caller that remembers the cell of a point that moves a
+  /// little (a node between sweeps) can keep it without locate(), for the same answer.
+  bool well_inside(int c, const Vec2& x) const;
 
  private:
   const Mesh& m_;

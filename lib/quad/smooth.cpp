@@ -295,6 +295,11 @@ std::vector<WallSlide> wall_slides(const Mesh& m) {
 }
 
 SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetric& metric) {
+  if (!metric) return shape_smooth(m, opt, HintedNodeMetric{});
+  return shape_smooth(m, opt, HintedNodeMetric([&](const Vec2& x, int&) { return metric(x); }));
+}
+
+SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const HintedNodeMetric& metric) {
   SmoothStats st;
   const int nn = m.num_nodes();
   const Topology topo = build_topology(m);
@@ -313,6 +318,8 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
   std::vector<Mat2> node_T(nn, Mat2::Identity()), cell_T(opt.cell_metric ? m.num_cells() : 0, Mat2::Identity());
   // and their Gram matrices T^T T, which every corner term of the fit uses (set with T)
   std::vector<Mat2> node_G(nn, Mat2::Identity()), cell_G(cell_T.size(), Mat2::Identity());
+  // the metric lookups' hints: the frame cell each node (cell centroid) was in at the last sweep
+  std::vector<int> node_hint(nn, -1), cell_hint(cell_T.size(), -1);
   // nodes to visit in a sweep: all in the first, then those with a cell-mate (or themselves)
   // that moved more than the tolerance in the sweep before (the others' fits are unchanged)
   std::vector<char> active(nn, 1), next(nn, 0);
@@ -418,13 +425,13 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
 #pragma omp parallel for schedule(static)
       for (int v = 0; v < nn; ++v)
         if (!topo.node_cells[v].empty()) {
-          node_T[v] = metric(m.nodes[v]);
+          node_T[v] = metric(m.nodes[v], node_hint[v]);
           node_G[v] = node_T[v].transpose() * node_T[v];
         }
       if (opt.cell_metric) {
 #pragma omp parallel for schedule(static)
         for (int c = 0; c < m.num_cells(); ++c) {
-          cell_T[c] = metric(cell_centroid(m, c));
+          cell_T[c] = metric(cell_centroid(m, c), cell_hint[c]);
           cell_G[c] = cell_T[c].transpose() * cell_T[c];
         }
       }

@@ -126,6 +126,31 @@ TEST_CASE("sampler: M of the containing cell, the nearest outside") {
   CHECK_FALSE(inside);
 }
 
+TEST_CASE("FrameSampler::at with a hint: the same M as without, along a walk through the cells") {
+  Mesh m = make_structured_quads(8, 8);
+  for (Vec2& p : m.nodes) p = Vec2(p.x() + 0.2 * p.y() * p.y(), p.y());  // not axis-aligned
+  std::vector<Mat2> M(m.num_cells());
+  for (int c = 0; c < m.num_cells(); ++c) M[c] = (1.0 + c) * Mat2::Identity();
+  set_frame_field(m, M);
+  const Frame f = frame_from_mesh(m, "s");
+  const FrameSampler s(f);
+  int hint = -1, kept = 0;
+  for (int k = 0; k <= 4000; ++k) {  // a slow walk: the hint is kept for many steps, then changes
+    const Vec2 x(0.01 + 1.15 * k / 4000.0, 0.5 + 0.45 * std::sin(k / 300.0));
+    const int before = hint;
+    REQUIRE(s.at(x, hint) == s.at(x));
+    kept += hint == before;
+  }
+  CHECK(kept > 3000);
+  // on the edge between cells 3 and 4 (x = 0.5 + 0.025 y on the bottom row): either side's hint
+  // gives locate's cell
+  const Vec2 e(0.5 + 0.025e-3, 1e-3);
+  for (int h : {-1, 3, 4}) {
+    int hh = h;
+    CHECK(s.at(e, hh) == s.at(e));
+  }
+}
+
 TEST_CASE("write_frame: only Vinv and the tag, read back bit-exact") {
   Frame f = frame_from_mesh(untagged(2, frame_inverse(0.1, 2, 1.1)), "f", SizeConvention::Philip);
   const std::string path = (std::filesystem::temp_directory_path() / "quadapt_test_frame.msh").string();

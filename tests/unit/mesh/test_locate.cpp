@@ -66,3 +66,33 @@ TEST_CASE("point location: a graded mesh's crowded buckets give the lowest-numbe
   CHECK(found > 10000);
   CHECK(ties > 3000);  // the shared vertices and edges were tested
 }
+
+TEST_CASE("well_inside: a point in a cell's interior away from its edges lies in that cell only") {
+  // the graded, sheared mesh above: wherever well_inside(c, x) holds, locate(x) == c, so a caller
+  // may keep c as x moves (quadsmooth's per-node frame cell); on and near edges it does not hold
+  Mesh m = make_structured_quads(40, 40);
+  for (Vec2& p : m.nodes) p = Vec2(p.x() + 0.1 * p.y(), std::pow(p.y(), 6));
+  const CellLocator loc(m);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  int kept = 0;
+  for (int c = 0; c < m.num_cells(); ++c) {
+    const Cell& cell = m.cells[c];
+    const Vec2 a = m.nodes[cell.v[0]], b = m.nodes[cell.v[1]], d = m.nodes[cell.v[3]];
+    for (int k = 0; k < 20; ++k) {  // points of the parallelogram, some within rounding of an edge
+      double s = u(rng), t = u(rng);
+      if (k % 5 == 0) s = 1e-13;
+      const Vec2 x = a + s * (b - a) + t * (d - a);
+      if (!loc.well_inside(c, x)) continue;
+      ++kept;
+      REQUIRE(first_containing(m, x) == c);
+      for (int o = std::max(0, c - 41); o <= std::min(m.num_cells() - 1, c + 41); ++o)
+        if (o != c) REQUIRE_FALSE(loc.well_inside(o, x));
+    }
+    CHECK_FALSE(loc.well_inside(c, m.nodes[cell.v[0]]));                        // a vertex
+    CHECK_FALSE(loc.well_inside(c, 0.5 * (m.nodes[cell.v[0]] + m.nodes[cell.v[1]])));  // an edge
+  }
+  CHECK(kept > 20000);
+  CHECK_FALSE(loc.well_inside(-1, Vec2(0.5, 0.5)));
+  CHECK_FALSE(loc.well_inside(m.num_cells(), Vec2(0.5, 0.5)));
+}
