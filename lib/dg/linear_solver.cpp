@@ -100,7 +100,7 @@ int gmres(const Op& A, const Op& absA, const Op& Minv, const VectorXd& b, Vector
     beta = r.norm();
     if (beta <= rtol * bnorm || beta == 0) break;
     // The Krylov estimate passed rtol but the true residual did not: accept it when it is at
-    // the rounding level of A x (normwise backward error), or within 10 rtol.
+    // the rounding level of A x in every row (componentwise backward error), or within 10 rtol.
     if (std::abs(g[j]) <= rtol * bnorm && at_rounding_level(absA, b, x, r)) break;
     if (beta <= 10 * rtol * bnorm && std::abs(g[j]) <= rtol * bnorm) break;
     if (beta > 0.9 * previous) break;  // stagnation: the caller judges the result

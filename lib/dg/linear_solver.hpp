@@ -16,8 +16,8 @@
 //                  auto_max_iterations (or its rate after a GMRES restart cycle projects more),
 //                  the other iterative method, then umfpack.
 // Iterative methods stop at ||b - A x|| <= rtol ||b|| (true residual checked at the end), or when
-// the true residual is at the rounding level of A x: ||r|| <= 1000 eps || |A| |x| || (normwise
-// backward error; stretched meshes with steep data have such a floor near 1e-12).
+// the true residual is at the rounding level of A x in every row: |r_i| <= 1000 eps (|A| |x| + |b|)_i
+// (componentwise backward error; stretched meshes with steep data have such a floor near 1e-12).
 #include <Eigen/Core>
 #include <string>
 #include <vector>

@@ -36,9 +36,7 @@ std::string thin_cell_note(const Mesh& mesh) {
   return "; but the mesh's " + cell_label(mesh, thinnest) + " is " + sci(h[thinnest]) + " thick against a median of " +
          sci(median) + ": a cell that thin makes the system numerically singular — remove or merge it";
 }
-}  // namespace
 
-namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
