@@ -18,21 +18,26 @@ int main(int argc, char** argv) {
   Tool tool("estimate-frame", "Optimal frame shape (theta, rho) and error constant B per cell from a DG solution",
             "For each cell k: the degree-(p+1) polynomial reconstructed from the DG field u over k and "
             "its face neighbours by H1 projection (thesis eq. 5.8; hanging-node neighbours included; "
-            "--patch vertex adds every cell sharing a vertex), its largest (p+1)-th directional "
-            "derivative A1 with direction phi and the perpendicular one A2 (eqs. 5.10-5.13; A = "
-            "|D^(p+1)u[xi,...,xi]|/(p+1)!, the Taylor term), then the frame: long axis theta = "
-            "phi - pi/2 in [0, pi) and anisotropy rho = h1/h2 = (A1/A2)^(1/(p+1)) >= 1, i.e. elements "
-            "THIN along the largest derivative, and the error constant B of the L_q model e = B "
-            "d^(-q(p+1)/2) (eqs. 5.15-5.16). A2 = 0 is floored at A1 rho_max^-(p+1) (rho <= "
-            "--max-anisotropy); cells whose (p+1)-th term is rounding noise get A1 = A2 = B = 0, "
-            "theta = 0, rho = 1. SOL may have curved cells (geometric order 2..6): the field lives and is "
-            "reconstructed on their curved map. Output: SOL's geometry (the vertex view of curved cells) "
-            "and boundary groups with cell fields theta, "
-            "rho, B, A1, A2, phi and p (the DG degree); the solution itself is not copied. Input "
-            "for size-solve. With --exact EXPR -p P the field is instead the degree-P GLL "
-            "interpolant of the expression EXPR(x, y) on the quad mesh SOL (adaptation to a known "
-            "function, no solver).");
-  std::string in, out, patch = "face", exact;
+            "--patch vertex adds every cell sharing a vertex); its top-degree term P(y) (the Taylor "
+            "term D^(p+1)u[y,...,y]/(p+1)!) gives the frame: long axis theta in [0, pi), anisotropy "
+            "rho = h1/h2 >= 1 and the error constant B of the L_q model e = B d^(-q(p+1)/2) (eqs. "
+            "5.15-5.16). --model polynomial (the default) minimises the L_q integral of |P| itself over "
+            "the element's ellipse over theta and rho: every term of P counts, so a harmonic solution "
+            "gets square elements. --model thesis uses the thesis's bound: the largest directional "
+            "derivative A1 with direction phi and the perpendicular one A2 (eqs. 5.10-5.13), theta = "
+            "phi - pi/2 and rho = (A1/A2)^(1/(p+1)), i.e. elements THIN along the largest derivative; "
+            "it asks for rho = its cap wherever A2 vanishes (for p = 2, everywhere on a harmonic "
+            "solution). rho is capped at --max-anisotropy; cells whose (p+1)-th term is rounding noise "
+            "get A1 = A2 = B = 0, theta = 0, rho = 1. SOL may have curved cells (geometric order 2..6): "
+            "the field lives and is reconstructed on their curved map. Output: SOL's geometry (the "
+            "vertex view of curved cells) and boundary groups with cell fields theta, rho, B, A1, A2, "
+            "phi, model_A1, model_A2 (the thesis bound's coefficients that give the model's rho and B: "
+            "A1 and A2 with --model thesis; A1 A2 = (I/2pi)^(2/q), A1/A2 = rho^(p+1) with polynomial; "
+            "size-solve re-evaluates B from them at its --max-anisotropy) and p (the DG degree); the "
+            "solution itself is not copied. Input for size-solve. With --exact EXPR "
+            "-p P the field is instead the degree-P GLL interpolant of the expression EXPR(x, y) on the "
+            "quad mesh SOL (adaptation to a known function, no solver). See docs/estimate-frame.md.");
+  std::string in, out, patch = "face", model = "polynomial", exact;
   int p_exact = 0;
   EstimateOptions opt;
   auto& app = tool.app();
@@ -44,6 +49,11 @@ int main(int argc, char** argv) {
   app.add_option("--norm-q", opt.q, "Exponent q of the L_q error norm (>= 1)")->capture_default_str();
   app.add_option("--patch", patch, "Reconstruction patch: face (thesis Fig. 5.1) or vertex (3x3-like)")
       ->check(CLI::IsMember({"face", "vertex"}))
+      ->capture_default_str();
+  app.add_option("--model", model,
+                 "Error model: polynomial (the L_q integral of the whole (p+1)-th term over the element) or "
+                 "thesis (eqs. 5.9-5.16: A1 and the perpendicular A2 only)")
+      ->check(CLI::IsMember({"polynomial", "thesis"}))
       ->capture_default_str();
   auto* ex = app.add_option("--exact", exact, "Use the GLL interpolant of this expression in x, y instead of the field");
   auto* pe = app.add_option("-p,--degree", p_exact, "DG degree P of the --exact interpolant (" + degree_range_text() + ")");
@@ -60,6 +70,8 @@ int main(int argc, char** argv) {
     tool.option("field", opt.field);
     tool.option("q", opt.q);
     tool.option("patch", patch);
+    opt.model = model == "thesis" ? ErrorModel::Thesis : ErrorModel::Polynomial;
+    tool.option("model", model);
     tool.option("max_anisotropy", opt.max_anisotropy);
     // parsed before reading: a mistake in it is the option's, named as such ("--exact 'x*':
     // column 3: ..."; it said only "column 3: expression ends unexpectedly")

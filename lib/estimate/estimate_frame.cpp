@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "estimate/directional.hpp"
 #include "estimate/error_model.hpp"
+#include "estimate/polynomial_model.hpp"
 #include "estimate/reconstruct.hpp"
 #include "mesh/topology.hpp"
 
@@ -66,14 +67,17 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
   r.p = p;
   r.A1.assign(nc, 0); r.A2.assign(nc, 0); r.phi.assign(nc, 0);
   r.theta.assign(nc, 0); r.rho.assign(nc, 1); r.B.assign(nc, 0);
+  r.model_A1.assign(nc, 0); r.model_A2.assign(nc, 0);
 
   bool failed = false;
   std::string what;
+  std::vector<std::vector<double>> tops(nc);  // P of every cell (polynomial model)
 #pragma omp parallel for schedule(static)
   for (int c = 0; c < nc; ++c) {
     try {
       PatchPolynomial poly = rec.reconstruct(c, patches[c]);
-      DirectionalExtrema d = directional_extrema(poly.top_homogeneous());
+      tops[c] = poly.top_homogeneous();
+      DirectionalExtrema d = directional_extrema(tops[c]);
       r.A1[c] = d.A1;
       r.A2[c] = d.A2;
       r.phi[c] = d.phi;
@@ -93,13 +97,26 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
   double amax = 0, umax = 0;
   for (double a : r.A1) amax = std::max(amax, a);
   for (double v : f->values) umax = std::max(umax, std::abs(v));
+  std::vector<char> derivative_free(nc, 0);
   for (int c = 0; c < nc; ++c) {
     const double hk = std::sqrt(std::abs(cell_area(sol, c)));
     if (r.A1[c] * std::pow(hk, n) <= opt.direction_floor * umax || r.A1[c] <= opt.direction_floor * amax) {
       r.A1[c] = r.A2[c] = 0;
-      continue;
+      derivative_free[c] = 1;
     }
-    FrameShape s = optimal_shape(r.A1[c], r.A2[c], r.phi[c], n, opt.q, opt.max_anisotropy);
+  }
+#pragma omp parallel for schedule(static)
+  for (int c = 0; c < nc; ++c) {
+    if (derivative_free[c]) continue;
+    r.model_A1[c] = r.A1[c];
+    r.model_A2[c] = r.A2[c];
+    if (opt.model == ErrorModel::Polynomial) {
+      // the thesis's orientation (the short axis along A1), the stretch and B of the whole term
+      const PolynomialShape ps = polynomial_stretch(tops[c], opt.q, opt.max_anisotropy, r.phi[c] - 0.5 * M_PI);
+      r.model_A1[c] = ps.A1;
+      r.model_A2[c] = ps.A2;
+    }
+    FrameShape s = optimal_shape(r.model_A1[c], r.model_A2[c], r.phi[c], n, opt.q, opt.max_anisotropy);
     r.B[c] = s.B;
     r.theta[c] = s.theta;
     r.rho[c] = s.rho;
@@ -124,6 +141,8 @@ Mesh make_shape_mesh(const Mesh& sol, const EstimateResult& r) {
   scalar("A1", r.A1);
   scalar("A2", r.A2);
   scalar("phi", r.phi);
+  scalar("model_A1", r.model_A1);
+  scalar("model_A2", r.model_A2);
   scalar("p", std::vector<double>(r.A1.size(), static_cast<double>(r.p)));
   return m;
 }

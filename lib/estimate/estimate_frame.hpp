@@ -4,7 +4,8 @@
 //
 // For each cell k: the degree-(p+1) H1 patch reconstruction over k and its face neighbours
 // (estimate/reconstruct.hpp), the extremal (p+1)-th directional derivatives A1, A2 and the
-// direction φ of A1 (estimate/directional.hpp), then θ, ρ, B (estimate/error_model.hpp).
+// direction φ of A1 (estimate/directional.hpp), then θ, ρ, B: by default from the whole
+// top-degree term (estimate/polynomial_model.hpp), or by the thesis's bound (estimate/error_model.hpp).
 // Cells are independent: OpenMP-parallel, deterministic for any thread count.
 #include <string>
 #include <vector>
@@ -18,9 +19,15 @@ namespace quadapt {
 /// — a tensor-like 3x3 patch on structured meshes, less biased at boundaries.
 enum class PatchKind { Face, Vertex };
 
+/// The local error model that turns the top-degree term P into θ, ρ, B:
+/// Polynomial = the L_q integral of |P| itself over the element (polynomial_model.hpp, the default);
+/// Thesis = the thesis's bound from A1 and A2 = |P| across A1's direction (eqs. 5.9-5.16).
+enum class ErrorModel { Polynomial, Thesis };
+
 struct EstimateOptions {
   std::string field = "u";    ///< name of the DG CellNodeField
   PatchKind patch = PatchKind::Face;
+  ErrorModel model = ErrorModel::Polynomial;
   double q = 2;               ///< L_q norm of the error model (q >= 1)
   /// Numerical cap on ρ = h1/h2 (and floor A2 >= A1 ρ_max^-(p+1)) so that A2 = 0 stays finite.
   /// The user-facing anisotropy limit is size-solve's --max-anisotropy.
@@ -33,7 +40,11 @@ struct EstimateOptions {
 struct EstimateResult {
   int p = 0;                  ///< DG degree of the input field
   std::vector<double> A1, A2; ///< eq. 5.10, 5.13 (Taylor-term convention, see directional.hpp)
-  std::vector<double> phi;    ///< direction of A1, [0, π)
+  /// The thesis-bound coefficients that reproduce the model's ρ and B through error_model.hpp
+  /// (size-solve re-evaluates B from them at its anisotropy cap): A1, A2 with ErrorModel::Thesis;
+  /// with ErrorModel::Polynomial A1 A2 = (I/2π)^(2/q), A1/A2 = ρ^n (polynomial_model.hpp).
+  std::vector<double> model_A1, model_A2;
+  std::vector<double> phi;    ///< direction of A1 (the short axis), [0, π)
   std::vector<double> theta;  ///< long-axis direction, [0, π)
   std::vector<double> rho;    ///< h1/h2 >= 1
   std::vector<double> B;      ///< error constant (eq. 5.16, our constant)
@@ -51,7 +62,7 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt = {},
                               const std::string& source = "");
 
 /// The SHAPE mesh: sol's geometry and boundary groups, no input fields, plus CellFields
-/// theta, rho, B, A1, A2, phi and p (the DG degree, constant per cell). Curved cells become
+/// theta, rho, B, A1, A2, phi, model_A1, model_A2 and p (the DG degree, constant per cell). Curved cells become
 /// their vertex view (straight-sided, same vertices and cells): the shape is a per-cell
 /// constant, and size-solve's background mesh is straight.
 Mesh make_shape_mesh(const Mesh& sol, const EstimateResult& r);

@@ -19,7 +19,8 @@
 //
 // Safeguards (all stated in size-solve --help):
 //  - anisotropy ρ = h1/h2 clamped to [1/ρ_max, ρ_max]; B is then re-evaluated from A1 and the
-//    floored A2 >= A1 ρ_max^-(p+1) (estimate/error_model.hpp) when the SHAPE has A1, A2;
+//    floored A2 >= A1 ρ_max^-(p+1) (estimate/error_model.hpp) when the SHAPE has A1, A2 — the
+//    model's bound coefficients model_A1, model_A2 when it has them (estimate/polynomial_model.hpp);
 //  - sizes in [hmin, hmax] (defaults 1e-6·sqrt(|Ω|) and 0.125·sqrt(|Ω|): the coarsest
 //    element has a quarter of the domain's width, so a square gets at least 4 x 4 elements):
 //    h = sqrt(h1 h2) is clamped there (re-solving λ), then ρ is capped so that every axis obeys
@@ -69,7 +70,7 @@ struct SizeResult {
 /// Per-cell SHAPE data read from a shape mesh (estimate-frame output).
 struct ShapeData {
   int p = 0;
-  std::vector<double> theta, rho, B, A1, A2;  ///< A1/A2 empty when the file has none
+  std::vector<double> theta, rho, B, A1, A2;  ///< model_A1/2 (else A1/2); empty when the file has none
   std::vector<double> area;
 };
 

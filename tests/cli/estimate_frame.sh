@@ -19,10 +19,33 @@ python3 "$SRC/tests/golden/refine/make_square.py" 16 "$T/sq16.msh" bare
 estimate-frame -q "$T/sq16.msh" --exact "$EXACT" -p 2 -o "$T/shape.msh" --threads 2
 [ "$(json "$T/shape.json" '["cells"]')" = 256 ] || fail "cells"
 [ "$(json "$T/shape.json" '["p"]')" = 2 ] || fail "p"
-for f in theta rho B A1 A2 phi p; do grep -q "^\"$f\"\$" "$T/shape.msh" || fail "field $f missing"; done
+for f in theta rho B A1 A2 phi model_A1 model_A2 p; do grep -q "^\"$f\"\$" "$T/shape.msh" || fail "field $f missing"; done
 ! grep -q '^\$ElementNodeData' "$T/shape.msh" || fail "the solution was copied to SHAPE"
 python3 "$CMP" "$T/shape.msh" "$GOLD/sshock16_p2_shape.msh" --rtol 1e-6 --atol 1e-9 || fail "SHAPE differs from the golden"
 python3 "$CMP" "$T/shape.json" "$GOLD/sshock16_p2_shape.json" --rtol 1e-6 --atol 1e-9 || fail "report differs from the golden"
+
+# --- the error model: polynomial by default; --model thesis writes its own A1, A2 as model_A1/2
+[ "$(json "$T/shape.json" '["options"]["model"]')" = polynomial ] || fail "default model"
+estimate-frame -q "$T/sq16.msh" --exact "$EXACT" -p 2 -o "$T/thesis.msh" --model thesis
+[ "$(json "$T/thesis.json" '["options"]["model"]')" = thesis ] || fail "report: model thesis"
+python3 - "$T/thesis.msh" "$T/shape.msh" "$SRC/tests/cli" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[3])
+from golden_compare import read_msh
+def views(path):  # cell field name -> values in element order
+    return {n: [d["values"][k][0] for k in sorted(d["values"])] for n, d in read_msh(path)["views"].items()}
+t, p = views(sys.argv[1]), views(sys.argv[2])
+assert t["model_A1"] == t["A1"] and t["model_A2"] == t["A2"], "thesis: model_A1/2 are not A1/2"
+# the directional fields and the orientation do not depend on the model; rho and B do
+for f in ("A1", "A2", "phi", "theta"):
+    assert t[f] == p[f], f
+assert t["rho"] != p["rho"] and t["B"] != p["B"], "the models gave the same rho and B"
+PY
+set +e
+estimate-frame -q "$T/sq16.msh" --exact x -p 1 -o "$T/m.msh" --model bamg 2>"$T/err"; rc=$?
+set -e
+[ $rc = 2 ] && grep -q -- "--model" "$T/err" || fail "--model bamg: exit $rc, $(cat "$T/err")"
+estimate-frame --help | grep -q -- "--model" || fail "--help does not list --model"
 
 # --- deterministic for any thread count
 estimate-frame -q "$T/sq16.msh" --exact "$EXACT" -p 2 -o "$T/shape1.msh" --threads 1
@@ -55,16 +78,12 @@ command -v dgsolve >/dev/null || fail "dgsolve not on PATH: the DG-solution path
   # Golden from the DG solution. Compared field-wise with tolerances that survive solver
   # tolerance changes in dgsolve: A1, A2, B, rho to rel 1e-4 of the field's largest value; theta
   # where rho > 1.2 (elsewhere the direction is ill-conditioned) to 1e-3 rad modulo pi.
-  python3 - "$T/dgshape.msh" "$GOLD/sshock16_p2_dg_shape.msh" <<'PY'
+  python3 - "$T/dgshape.msh" "$GOLD/sshock16_p2_dg_shape.msh" "$SRC/tests/cli" <<'PY'
 import math, sys
-def views(path):
-    L = open(path).read().split("\n"); out = {}
-    for i, l in enumerate(L):
-        if l == "$ElementData":
-            name = L[i + 2].strip('"'); nr = int(L[i + 3]); j = i + 4 + nr
-            ni = int(L[j]); n = int(L[j + 3]); s = j + 1 + ni
-            out[name] = [float(x.split()[1]) for x in L[s:s + n]]
-    return out
+sys.path.insert(0, sys.argv[3])
+from golden_compare import read_msh
+def views(path):  # cell field name -> values in element order
+    return {n: [d["values"][k][0] for k in sorted(d["values"])] for n, d in read_msh(path)["views"].items()}
 a, b = views(sys.argv[1]), views(sys.argv[2])
 bad = []
 for f in ("A1", "A2", "B", "rho", "theta"):

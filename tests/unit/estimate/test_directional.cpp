@@ -5,8 +5,11 @@
 
 #include "estimate/directional.hpp"
 #include "estimate/error_model.hpp"
+#include "test_util.hpp"
 
 using namespace quadapt;
+using quadapt::testutil::angle_diff_mod_pi;
+using quadapt::testutil::binom;
 
 namespace {
 // Coefficients (a[i] of x^i y^(n-i)) of c1 s^n + c2 t^n with s = x cos a + y sin a,
@@ -14,20 +17,11 @@ namespace {
 std::vector<double> rotated(int n, double c1, double c2, double ang) {
   std::vector<double> a(n + 1, 0.0);
   const double c = std::cos(ang), s = std::sin(ang);
-  auto binom = [](int n, int k) {
-    double r = 1;
-    for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
-    return r;
-  };
   for (int i = 0; i <= n; ++i) {
     a[i] += c1 * binom(n, i) * std::pow(c, i) * std::pow(s, n - i);
     a[i] += c2 * binom(n, i) * std::pow(-s, i) * std::pow(c, n - i);
   }
   return a;
-}
-double angle_diff_mod_pi(double a, double b) {
-  double d = std::fmod(std::abs(a - b), M_PI);
-  return std::min(d, M_PI - d);
 }
 }  // namespace
 

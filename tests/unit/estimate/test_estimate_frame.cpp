@@ -6,17 +6,15 @@
 #include "core/error.hpp"
 #include "estimate/directional.hpp"
 #include "estimate/estimate_frame.hpp"
+#include "estimate/polynomial_model.hpp"
 #include "estimate/interpolate.hpp"
 #include "test_util.hpp"
 #include "../worst.hpp"
 
 using namespace quadapt;
+using quadapt::testutil::angle_diff_mod_pi;
 
 namespace {
-double angle_diff_mod_pi(double a, double b) {
-  double d = std::fmod(std::abs(a - b), M_PI);
-  return std::min(d, M_PI - d);
-}
 Mesh with_u(Mesh m, int p, const std::function<double(double, double)>& f) {
   m.set_field(interpolate_dg(m, p, f));
   return m;
@@ -35,7 +33,10 @@ TEST_CASE("estimate on a degree-p field holding x^p y + c x y^p: A1, A2, phi mat
                     [&](double x, double y) {
                       return std::pow(x, p) * y + c * x * std::pow(y, p) + (p == 3 ? 0.3 * x * x * y * y : 0.0) + x - 2 * y;
                     });
-    EstimateResult r = estimate_frame(m);
+    EstimateOptions thesis;
+    thesis.model = ErrorModel::Thesis;
+    EstimateResult r = estimate_frame(m, thesis);
+    const EstimateResult poly = estimate_frame(m);  // the default, polynomial model
     CHECK(r.p == p);
     // brute force on the exact top-degree part: P(φ) = cos^p sin + c cos sin^p (+ 0.3 cos^2 sin^2)
     auto P = [&](double ph) {
@@ -55,6 +56,18 @@ TEST_CASE("estimate on a degree-p field holding x^p y + c x y^p: A1, A2, phi mat
       CHECK(angle_diff_mod_pi(r.phi[k], bphi) < 1e-5);
       CHECK(angle_diff_mod_pi(r.theta[k], bphi - M_PI / 2) < 1e-5);
       CHECK(r.rho[k] == doctest::Approx(std::pow(best / a2, 1.0 / (p + 1))).epsilon(1e-4));
+    }
+    // the polynomial model keeps the orientation and takes ρ from the whole term
+    std::vector<double> a(p + 2, 0.0);
+    a[p] += 1;
+    a[1] += c;
+    if (p == 3) a[2] += 0.3;
+    const PolynomialShape ps = polynomial_stretch(a, 2, 1e6, bphi - M_PI / 2);
+    CHECK(std::abs(ps.rho - std::pow(best / a2, 1.0 / (p + 1))) > 0.05 * ps.rho);  // the models differ here
+    for (int k = 0; k < m.num_cells(); ++k) {
+      CHECK(angle_diff_mod_pi(poly.phi[k], bphi) < 1e-5);
+      CHECK(angle_diff_mod_pi(poly.theta[k], bphi - M_PI / 2) < 1e-5);
+      CHECK(poly.rho[k] == doctest::Approx(ps.rho).epsilon(1e-4));
     }
   }
 }
@@ -210,25 +223,33 @@ TEST_CASE("the error model does not depend on the unit of length") {
   // s = 100 on a rectangle (docs/estimate-frame.md).
   const int p = 2;
   const Mesh base = make_perturbed_quads(16, 16, 0.25, 5);
-  auto solve = [&](double s) {
+  auto solve = [&](double s, ErrorModel model) {
     Mesh m = testutil::rescale(base, 0, s, 0, s);
     m = with_u(std::move(m), p, [s](double x, double y) {
       return std::atan(60 * (std::hypot(x / s + 0.25, y / s + 0.25) - 0.9));
     });
-    return estimate_frame(m);
+    EstimateOptions o;
+    o.model = model;
+    return estimate_frame(m, o);
   };
-  const EstimateResult ref = solve(1.0);
+  for (ErrorModel model : {ErrorModel::Thesis, ErrorModel::Polynomial}) {
+  CAPTURE(static_cast<int>(model));
+  const bool thesis = model == ErrorModel::Thesis;
+  const EstimateResult ref = solve(1.0, model);
   const double a1_max = *std::max_element(ref.A1.begin(), ref.A1.end());
   for (const double s : {1.0 / 1024, 0.5, 8.0, 1024.0, 1e-3, 10.0, 1e3}) {
     CAPTURE(s);
     const bool power_of_two = std::exp2(std::round(std::log2(s))) == s;
-    const EstimateResult r = solve(s);
+    const EstimateResult r = solve(s, model);
     const double f = std::pow(s, p + 1);
+    const double fB = std::pow(s, 2.0 * (p + 1));  // B = c (A1 A2)^(q/2), q = 2
     double worst_a = 0, worst_rho = 0, worst_theta = 0;
     std::vector<double> drho;
     for (size_t c = 0; c < ref.A1.size(); ++c) {
       if (ref.A1[c] < 1e-3 * a1_max) continue;  // the flat cells: no shape to compare
-      worst_a = quadapt_test::worst_of(worst_a, std::abs(r.A1[c] * f - ref.A1[c]) / ref.A1[c]);
+      // the thesis's A1; the polynomial model's B (its A1 is an equivalent that moves with ρ)
+      worst_a = quadapt_test::worst_of(worst_a, thesis ? std::abs(r.A1[c] * f - ref.A1[c]) / ref.A1[c]
+                                                       : std::abs(r.B[c] * fB - ref.B[c]) / ref.B[c]);
       const double d = std::abs(r.rho[c] - ref.rho[c]) / ref.rho[c];
       worst_rho = quadapt_test::worst_of(worst_rho, d);
       drho.push_back(d);
@@ -236,7 +257,7 @@ TEST_CASE("the error model does not depend on the unit of length") {
     }
     std::sort(drho.begin(), drho.end());
     const double median_rho = drho[drho.size() / 2];
-    MESSAGE("s = " << s << ": worst relative A1 " << worst_a << ", rho " << worst_rho << " (median " << median_rho
+    MESSAGE("s = " << s << std::string(thesis ? ": worst relative A1 " : ": worst relative B ") << worst_a << ", rho " << worst_rho << " (median " << median_rho
                    << "), theta " << worst_theta << " rad");
     if (power_of_two) {
       CHECK(worst_a < 1e-7);
@@ -244,10 +265,36 @@ TEST_CASE("the error model does not depend on the unit of length") {
       CHECK(worst_theta < 1e-7);
     } else {
       // L is then off by up to sqrt 2 from s: the top derivative moves little, the stretch of the
-      // nearly one-dimensional cells (A2 near zero) more
-      CHECK(worst_a < 1e-3);
+      // nearly one-dimensional cells (A2 near zero) more, and B (∝ A1 A2) with it (measured: A1
+      // 1.2e-3, B 5.1e-3 at s = 10)
+      CHECK(worst_a < (thesis ? 1e-3 : 1e-2));
       CHECK(worst_theta < 1e-3);
       CHECK(median_rho < 1e-2);
     }
   }
+  }
+}
+
+TEST_CASE("a harmonic solution gets nearly square frames from the default model, not from the thesis's") {
+  // u = e^x cos y + x y is harmonic: its (p+1)-th directional Taylor term is ∝ cos((p+1)φ − ψ),
+  // which for odd p+1 vanishes across its maximum, so the thesis's A2 ~ 0 and ρ is large. The
+  // polynomial model integrates the whole term and keeps the elements nearly square (on the
+  // 3:1 rectangle's loop, docs/estimate-frame.md: 9.58e-7 -> 4.66e-7 at ~31,000 DOFs).
+  const int p = 2;
+  Mesh m = with_u(testutil::rescale(make_perturbed_quads(24, 8, 0.2, 3), 0, 3, 0, 1), p,
+                  [](double x, double y) { return std::exp(x) * std::cos(y) + x * y; });
+  auto median_rho = [&](ErrorModel model) {
+    EstimateOptions o;
+    o.model = model;
+    EstimateResult r = estimate_frame(m, o);
+    std::vector<double> rho = r.rho;
+    std::sort(rho.begin(), rho.end());
+    return rho[rho.size() / 2];
+  };
+  const double poly = median_rho(ErrorModel::Polynomial), thesis = median_rho(ErrorModel::Thesis);
+  MESSAGE("median rho: polynomial " << poly << ", thesis " << thesis);
+  // measured 1.01 and 4.14: the thesis's A2 is the reconstruction's error across the maximum
+  // (A2 / A1 ~ 0.014), not the solution's
+  CHECK(poly < 1.3);
+  CHECK(thesis > 3);
 }

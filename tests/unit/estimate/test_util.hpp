@@ -1,5 +1,6 @@
 #pragma once
 // Helpers shared by the estimate/sizing unit tests (in-memory meshes and DG fields).
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -8,6 +9,19 @@
 #include "mesh/mesh.hpp"
 
 namespace quadapt::testutil {
+
+/// |a - b| as undirected angles: in [0, π/2].
+inline double angle_diff_mod_pi(double a, double b) {
+  double d = std::fmod(std::abs(a - b), M_PI);
+  return std::min(d, M_PI - d);
+}
+
+/// The binomial coefficient C(n, k) as a double.
+inline double binom(int n, int k) {
+  double r = 1;
+  for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
+  return r;
+}
 
 /// Maps the unit-square mesh m affinely onto [x0,x1] x [y0,y1].
 inline Mesh rescale(Mesh m, double x0, double x1, double y0, double y1) {
