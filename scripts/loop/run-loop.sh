@@ -5,7 +5,7 @@
 #               --mode feature|goal --steps N --growth G --out DIR
 #               [--maxdofs N] [--fraction F] [--ff-by FIELD] [--seed S] [--smooth-bamg yes|no]
 #               [--max-anisotropy A] [--start-jitter J] [--fit-frame raw|meshed|capped] [--phases N]
-#               [--walls slide|fixed] [--r-max R] [--c-max C] [--size-gradation G]
+#               [--walls slide|fixed] [--r-max R] [--c-max C] [--size-gradation G] [--error-model polynomial|thesis]
 #               [--pictures yes|no] [--window x0,x1,y0,y1] [--thesis-case KEY] [--check-only]
 #
 # Every input is checked, and every tool the method needs is looked up, BEFORE any work starts.
@@ -41,6 +41,7 @@ die() { echo "loop: error: $*" >&2; exit 2; }
 CASE="" MESH="" P="" METHOD="" MODE="" STEPS="6" GROWTH="1.5" OUT="" MAXDOFS="0" FRACTION="0.3" FF_BY=""
 SEED="1" JITTER="0" SMOOTH_BAMG="no" PICTURES="yes" WINDOW="" THESIS_KEY="" CHECK_ONLY=0 GEOMETRY="" ORDER=""
 MAX_ANISO=""  # size-solve --max-anisotropy; empty = its default (25)
+ERROR_MODEL=""  # estimate-frame --model polynomial|thesis; empty = its default (polynomial)
 R_MAX=""      # goal mode: size-solve --r-max, the largest refinement factor per step; empty = its default (20)
 C_MAX=""      # goal mode: size-solve --c-max, the largest coarsening factor per step; empty = its default (4)
 SIZE_GRADATION=""  # size-solve --gradation G (lpcvt, bamg): h at most G x a face neighbour's; empty = its default (off)
@@ -64,6 +65,7 @@ while [ $# -gt 0 ]; do
     --geometry) GEOMETRY="$val" ;; --order) ORDER="$val" ;; --max-anisotropy) MAX_ANISO="$val" ;;
     --start-jitter) START_JITTER="$val" ;; --phases) PHASES="$val" ;; --walls) WALLS="$val" ;; --fit-frame) FIT_FRAME="$val" ;;
     --r-max) R_MAX="$val" ;; --c-max) C_MAX="$val" ;; --size-gradation) SIZE_GRADATION="$val" ;;
+    --error-model) ERROR_MODEL="$val" ;;
     *) die "unknown option $opt (see docs/loop.md)" ;;
   esac
 done
@@ -125,6 +127,8 @@ is_num "$START_JITTER" && "$PY" -c "import sys; sys.exit(0 if float('$START_JITT
   || die "PHASES='$PHASES': must be an integer in [0, 16] (lpcvt --phases: lattice phases tried, 0 = auto)"
 [ -z "$WALLS" ] || [ "$WALLS" = slide ] || [ "$WALLS" = fixed ] \
   || die "WALLS='$WALLS': must be slide or fixed (quadsmooth --walls: wall nodes slide along straight walls or stay)"
+[ -z "$ERROR_MODEL" ] || [ "$ERROR_MODEL" = polynomial ] || [ "$ERROR_MODEL" = thesis ] \
+  || die "ERROR_MODEL='$ERROR_MODEL': must be polynomial or thesis (estimate-frame --model: stretch and error constant from the whole (p+1)-th term, or the thesis's A1, A2 bound)"
 [ -n "$OUT" ] || die "OUT is not set (the run directory: --out DIR; with make: OUT=DIR)"
 case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
@@ -280,7 +284,7 @@ tools_id="$(dgsolve --version 2>/dev/null | awk 'NR == 1 {v = $NF} NR == 2 {sub(
 msg="$(ctl params "$OUT/loop.json" tools="$tools_id" case="$CASE" case_sha256="$case_sum" case_sha256_bytes="$case_bytes" mesh_sha256="$mesh_sum" p="$P" \
   method="$METHOD" mode="$MODE" growth="$GROWTH" fraction="$FRACTION" ff_by="$FF_BY" seed="$SEED" ${jit[@]+"${jit[@]}"} \
   smooth_bamg="$SMOOTH_BAMG" ${GEOMETRY:+geometry="$GEOMETRY" geometric_order="$ORDER"} \
-  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} ${phs[@]+"${phs[@]}"} ${wls[@]+"${wls[@]}"} ${rcm[@]+"${rcm[@]}"} \
+  ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${ERROR_MODEL:+error_model="$ERROR_MODEL"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} ${phs[@]+"${phs[@]}"} ${wls[@]+"${wls[@]}"} ${rcm[@]+"${rcm[@]}"} \
   ${sgr[@]+"${sgr[@]}"} 2>&1)" || die "$msg"
 [ -z "$msg" ] || echo "$msg" >&2
 
@@ -460,7 +464,7 @@ while :; do
         run_tool "$d" refine "$d/adapted.msh" "$ind" -- \
           refine "$ind" --fraction "$FRACTION" --by "$FF_BY" ${geo[@]+"${geo[@]}"} -o "$d/adapted.msh"
       else
-        run_tool "$d" estimate-frame "$d/shape.msh" "$d/sol.msh" -- estimate-frame "$d/sol.msh" -o "$d/shape.msh"
+        run_tool "$d" estimate-frame "$d/shape.msh" "$d/sol.msh" -- estimate-frame "$d/sol.msh" -o "$d/shape.msh" ${ERROR_MODEL:+--model "$ERROR_MODEL"}
         ind="$d/shape.msh"
         if [ "$FF_BY" = A1h ]; then  # A1 |K|^((p+1)/2), the thesis solver's indicator (ff-indicator.py)
           ind="$d/indicator.msh"
@@ -477,7 +481,7 @@ while :; do
         sol="$d/sol-straight.msh"
         run_tool "$d" straight "$sol" "$d/sol.msh" -- meshconvert "$d/sol.msh" --order 1 -o "$sol"
       fi
-      run_tool "$d" estimate-frame "$d/shape.msh" "$sol" -- estimate-frame "$sol" -o "$d/shape.msh"
+      run_tool "$d" estimate-frame "$d/shape.msh" "$sol" -- estimate-frame "$sol" -o "$d/shape.msh" ${ERROR_MODEL:+--model "$ERROR_MODEL"}
       if [ "$MODE" = goal ]; then
         run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
         dwr="$d/dwr.msh"

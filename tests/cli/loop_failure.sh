@@ -57,6 +57,9 @@ rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --max-ani
 [ $rc -eq 2 ] || fail "run-loop.sh, MAX_ANISOTROPY 0.5: exit $rc"
 grep -q "MAX_ANISOTROPY='0.5': must be a number >= 1" log4b || fail "MAX_ANISOTROPY 0.5: $(cat log4b)"
 [ ! -e run-bad ] || fail "bad MAX_ANISOTROPY created the run directory"
+rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --error-model bamg --out run-bad > log4e 2>&1 || rc=$?
+[ $rc -eq 2 ] && grep -q "ERROR_MODEL='bamg': must be polynomial or thesis" log4e || fail "ERROR_MODEL bamg: exit $rc, $(cat log4e)"
+[ ! -e run-bad ] || fail "bad ERROR_MODEL created the run directory"
 rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --start-jitter 0.5 --out run-bad > log4c 2>&1 || rc=$?
 [ $rc -eq 2 ] && grep -q "START_JITTER='0.5'" log4c || fail "START_JITTER 0.5: exit $rc, $(cat log4c)"
 [ ! -e run-bad ] || fail "bad START_JITTER created the run directory"

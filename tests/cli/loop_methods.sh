@@ -133,9 +133,12 @@ PYEOF
 ran=$((ran + 1))
 # the study rules pass the loop's knobs a study varies (MAX_ANISOTROPY and START_JITTER were
 # accepted by the variable check and silently left out of every study run)
-for target in sshock-feature-p2-lpcvt "$T/study-runs/sshock-goal/p2-lpcvt-seed2/loop.done"; do
-  cmd=$(make -n -s -f "$SRC/Makefile.cases" RUNS="$T/study-runs" "$target" MAX_ANISOTROPY=4 START_JITTER=0.1 2>&1 | grep run-loop)
-  grep -q -- '--max-anisotropy "4"' <<<"$cmd" && grep -q -- '--start-jitter "0.1"' <<<"$cmd" ||
-    { echo "FAIL: $target does not pass MAX_ANISOTROPY / START_JITTER: $cmd" >&2; exit 1; }
+for target in sshock-feature-p2-lpcvt "$T/study-runs/sshock-goal/p2-lpcvt-seed2/loop.done" \
+              "$T/study-runs/sshock-goal/p2-bamg-seed2/loop.done" loop; do
+  cmd=$(make -n -s -f "$SRC/Makefile.cases" RUNS="$T/study-runs" "$target" CASE=c.json OUT="$T/o" \
+        MAX_ANISOTROPY=4 START_JITTER=0.1 ERROR_MODEL=thesis 2>&1 | grep run-loop)
+  grep -q -- '--max-anisotropy "4"' <<<"$cmd" && grep -q -- '--start-jitter "0.1"' <<<"$cmd" &&
+    grep -q -- '--error-model "thesis"' <<<"$cmd" ||
+    { echo "FAIL: $target does not pass MAX_ANISOTROPY / START_JITTER / ERROR_MODEL: $cmd" >&2; exit 1; }
 done
 echo "loop methods CLI: $ran loops checked"
