@@ -27,7 +27,11 @@ int main(int argc, char** argv) {
             "derivative A1 with direction phi and the perpendicular one A2 (eqs. 5.10-5.13), theta = "
             "phi - pi/2 and rho = (A1/A2)^(1/(p+1)), i.e. elements THIN along the largest derivative; "
             "it asks for rho = its cap wherever A2 vanishes (for p = 2, everywhere on a harmonic "
-            "solution). rho is capped at --max-anisotropy; cells whose (p+1)-th term is rounding noise "
+            "solution). Observed-error floor (--observed-floor TAU, default 4): where the misfit of the "
+            "reconstruction to u, ||u~ - u||^q over the cell, exceeds TAU times its typical (median) "
+            "ratio to the model's error at the cell's size, B is raised by the excess: a smooth Taylor "
+            "model under-predicts singular and unresolved cells. rho is capped at --max-anisotropy; cells "
+            "whose (p+1)-th term is rounding noise "
             "get A1 = A2 = B = 0, theta = 0, rho = 1. SOL may have curved cells (geometric order 2..6): "
             "the field lives and is reconstructed on their curved map. Output: SOL's geometry (the "
             "vertex view of curved cells) and boundary groups with cell fields theta, rho, B, A1, A2, "
@@ -55,6 +59,11 @@ int main(int argc, char** argv) {
                  "thesis (eqs. 5.9-5.16: A1 and the perpendicular A2 only)")
       ->check(CLI::IsMember({"polynomial", "thesis"}))
       ->capture_default_str();
+  app.add_option("--observed-floor", opt.observed_floor,
+                 "Raise B where the reconstruction's misfit exceeds TAU x its median ratio to the model "
+                 "(0 = off; with --model thesis, 0 gives the thesis's eqs. 5.9-5.16 exactly)")
+      ->check(CLI::Number)
+      ->capture_default_str();
   auto* ex = app.add_option("--exact", exact, "Use the GLL interpolant of this expression in x, y instead of the field");
   auto* pe = app.add_option("-p,--degree", p_exact, "DG degree P of the --exact interpolant (" + degree_range_text() + ")");
   ex->needs(pe);
@@ -72,6 +81,7 @@ int main(int argc, char** argv) {
     tool.option("patch", patch);
     opt.model = model == "thesis" ? ErrorModel::Thesis : ErrorModel::Polynomial;
     tool.option("model", model);
+    tool.option("observed_floor", opt.observed_floor);
     tool.option("max_anisotropy", opt.max_anisotropy);
     // parsed before reading: a mistake in it is the option's, named as such ("--exact 'x*':
     // column 3: ..."; it said only "column 3: expression ends unexpectedly")
@@ -132,8 +142,11 @@ int main(int argc, char** argv) {
     rep["rho_median"] = rho[rho.size() / 2];
     rep["rho_max"] = rho.back();
     rep["model_error_at_current_sizes"] = std::pow(bsum, 1 / opt.q);
+    rep["misfit_ratio_median"] = r.misfit_ratio_median;
+    rep["cells_raised_by_misfit"] = r.cells_raised;
     tool.log(std::to_string(nc) + " cells, p = " + std::to_string(r.p) + ", median anisotropy " +
-             sci(rho[rho.size() / 2]) + ", " + std::to_string(flat) + " cells without (p+1)-th derivative");
+             sci(rho[rho.size() / 2]) + ", " + std::to_string(flat) + " cells without (p+1)-th derivative, " +
+             std::to_string(r.cells_raised) + " raised by the observed-error floor");
     {
       auto ph = tool.phase("write");
       write_msh(shape, out);

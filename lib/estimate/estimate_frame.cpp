@@ -9,6 +9,7 @@
 #include "estimate/error_model.hpp"
 #include "estimate/polynomial_model.hpp"
 #include "estimate/reconstruct.hpp"
+#include "fem/basis.hpp"
 #include "mesh/topology.hpp"
 
 namespace quadapt {
@@ -37,6 +38,42 @@ std::vector<std::vector<int>> reconstruction_patches(const Mesh& m, PatchKind ki
   return patches;
 }
 
+namespace {
+// The observed-error floor: ratio_K = misfit_K / (B_K |K|^((qn+2)/2)) is about constant (κ, its
+// median) where the Taylor model holds; where it exceeds τκ, B_K (and model_A1 A2, so that
+// size-solve's re-evaluation at its cap keeps the raise) is multiplied by ratio_K / (τκ), at most
+// kMaxRaise: a singular cell misfits at every size, and the model, whose rate h^(q(p+1)+2) it does
+// not follow, would keep investing in it (uncapped, an L-shape loop at p = 3 coarsened the rest
+// of the domain 3x at its step 7 and its error rose 16x; docs/estimate-frame.md).
+constexpr double kMaxRaise = 64;
+void raise_by_misfit(const Mesh& sol, const EstimateOptions& opt, EstimateResult& r) {
+  const int nc = static_cast<int>(r.B.size());
+  const int n = r.p + 1;
+  std::vector<double> ratio(nc, 0), positive;
+  for (int c = 0; c < nc; ++c) {
+    if (!(r.B[c] > 0)) continue;
+    const double model = r.B[c] * std::pow(std::abs(cell_area(sol, c)), (opt.q * n + 2) / 2);
+    ratio[c] = r.misfit[c] / model;
+    positive.push_back(ratio[c]);
+  }
+  if (positive.empty()) return;
+  std::nth_element(positive.begin(), positive.begin() + positive.size() / 2, positive.end());
+  const double kappa = positive[positive.size() / 2];
+  r.misfit_ratio_median = kappa;
+  if (!(kappa > 0)) return;
+  for (int c = 0; c < nc; ++c) {
+    const double excess = std::min(kMaxRaise, ratio[c] / (opt.observed_floor * kappa));
+    if (!(r.B[c] > 0) || !(excess > 1)) continue;
+    r.B[c] *= excess;
+    // B ∝ (A1 A2)^(q/2): both coefficients by excess^(1/q) keep ρ and give B · excess
+    const double g = std::pow(excess, 1 / opt.q);
+    r.model_A1[c] *= g;
+    r.model_A2[c] *= g;
+    ++r.cells_raised;
+  }
+}
+}  // namespace
+
 EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const std::string& source) {
   const CellNodeField* f = sol.cell_node_field(opt.field);
   if (!f)
@@ -55,6 +92,8 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
     throw InputError(source, "field \"" + opt.field + "\" does not match the cell count");
   if (!(opt.q >= 1)) throw InputError("q must be >= 1");
   if (!(opt.max_anisotropy >= 1)) throw InputError("max anisotropy must be >= 1");
+  if (!(opt.observed_floor == 0 || opt.observed_floor >= 1))
+    throw InputError("the observed-error floor must be 0 (off) or >= 1");
   for (double v : f->values)
     if (!std::isfinite(v)) throw InputError(source, "field \"" + opt.field + "\" has non-finite values");
 
@@ -72,11 +111,22 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
   bool failed = false;
   std::string what;
   std::vector<std::vector<double>> tops(nc);  // P of every cell (polynomial model)
+  r.misfit.assign(nc, 0);
+  const std::vector<double> gll = LagrangeBasis1D(p).nodes();  // the DG field's nodes
 #pragma omp parallel for schedule(static)
   for (int c = 0; c < nc; ++c) {
     try {
       PatchPolynomial poly = rec.reconstruct(c, patches[c]);
       tops[c] = poly.top_homogeneous();
+      // the misfit of ũ to u_h: mean |ũ − u_h|^q over the cell's GLL nodes, times its area
+      double s = 0;
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const double d = poly.eval(map_to_physical(sol, c, gll[i], gll[j])) -
+                           f->values[static_cast<size_t>(c) * n * n + i + n * j];
+          s += opt.q == 2 ? d * d : std::pow(std::abs(d), opt.q);
+        }
+      r.misfit[c] = s / (n * n) * std::abs(cell_area(sol, c));
       DirectionalExtrema d = directional_extrema(tops[c]);
       r.A1[c] = d.A1;
       r.A2[c] = d.A2;
@@ -121,6 +171,7 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
     r.theta[c] = s.theta;
     r.rho[c] = s.rho;
   }
+  if (opt.observed_floor > 0) raise_by_misfit(sol, opt, r);
   return r;
 }
 

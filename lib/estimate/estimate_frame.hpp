@@ -32,6 +32,11 @@ struct EstimateOptions {
   /// Numerical cap on ρ = h1/h2 (and floor A2 >= A1 ρ_max^-(p+1)) so that A2 = 0 stays finite.
   /// The user-facing anisotropy limit is size-solve's --max-anisotropy.
   double max_anisotropy = 1e6;
+  /// Observed-error floor τ (0 = off): where the reconstruction's misfit ||ũ − u_h||^q_{L_q(K)}
+  /// over the model's error at the cell's current size, e_K = B_K |K|^((q(p+1)+2)/2), exceeds τ
+  /// times its median over the cells, B_K is raised by that excess, at most 64× (docs/estimate-frame.md
+  /// *Observed-error floor*): the Taylor model under-predicts singular and unresolved cells.
+  double observed_floor = 4;
   /// Noise floor: cells with A1 h_k^(p+1) <= direction_floor · max|u| (h_k = sqrt(cell area))
   /// or A1 <= direction_floor · max_k A1 are derivative-free: A1 = A2 = B = 0, θ = 0, ρ = 1.
   double direction_floor = 1e-10;
@@ -47,7 +52,10 @@ struct EstimateResult {
   std::vector<double> phi;    ///< direction of A1 (the short axis), [0, π)
   std::vector<double> theta;  ///< long-axis direction, [0, π)
   std::vector<double> rho;    ///< h1/h2 >= 1
-  std::vector<double> B;      ///< error constant (eq. 5.16, our constant)
+  std::vector<double> B;      ///< error constant (eq. 5.16, our constant; raised by the observed floor)
+  std::vector<double> misfit; ///< ||ũ − u_h||^q_{L_q(K)} by the cell's GLL nodes (mean |·|^q × area)
+  double misfit_ratio_median = 0;  ///< κ: the median of misfit / (B |K|^((qn+2)/2)) over cells with B > 0
+  int cells_raised = 0;            ///< cells whose B the observed floor raised
 };
 
 /// The patch cells of every cell (cell k first, then the others in increasing index).

@@ -61,7 +61,6 @@ class ShapeIntegral {
   }
 
   /// I for any q: the uniform rule on 64 + 8n directions over [0, π), doubled.
-
   double value_q(double theta, double t) {
     const int N = 64 + 8 * n_;
     const double c = std::cos(theta), s = std::sin(theta), sr = std::exp(0.5 * t);
@@ -75,7 +74,6 @@ class ShapeIntegral {
   }
 
   int degree() const { return n_; }
-  bool closed_form() const { return q_ == 2; }
 
  private:
   double evaluate(double x, double y) {

@@ -129,6 +129,8 @@ is_num "$START_JITTER" && "$PY" -c "import sys; sys.exit(0 if float('$START_JITT
   || die "WALLS='$WALLS': must be slide or fixed (quadsmooth --walls: wall nodes slide along straight walls or stay)"
 [ -z "$ERROR_MODEL" ] || [ "$ERROR_MODEL" = polynomial ] || [ "$ERROR_MODEL" = thesis ] \
   || die "ERROR_MODEL='$ERROR_MODEL': must be polynomial or thesis (estimate-frame --model: stretch and error constant from the whole (p+1)-th term, or the thesis's A1, A2 bound)"
+thesis_floor=()  # ERROR_MODEL=thesis: the thesis's eqs. 5.9-5.16 exactly, without the observed-error floor
+[ "$ERROR_MODEL" != thesis ] || thesis_floor=(--observed-floor 0)
 [ -n "$OUT" ] || die "OUT is not set (the run directory: --out DIR; with make: OUT=DIR)"
 case "$SMOOTH_BAMG" in yes|no) ;; *) die "SMOOTH_BAMG='$SMOOTH_BAMG': use yes or no" ;; esac
 case "$PICTURES" in yes|no) ;; *) die "PICTURES='$PICTURES': use yes or no" ;; esac
@@ -464,7 +466,7 @@ while :; do
         run_tool "$d" refine "$d/adapted.msh" "$ind" -- \
           refine "$ind" --fraction "$FRACTION" --by "$FF_BY" ${geo[@]+"${geo[@]}"} -o "$d/adapted.msh"
       else
-        run_tool "$d" estimate-frame "$d/shape.msh" "$d/sol.msh" -- estimate-frame "$d/sol.msh" -o "$d/shape.msh" ${ERROR_MODEL:+--model "$ERROR_MODEL"}
+        run_tool "$d" estimate-frame "$d/shape.msh" "$d/sol.msh" -- estimate-frame "$d/sol.msh" -o "$d/shape.msh" ${ERROR_MODEL:+--model "$ERROR_MODEL"} ${thesis_floor[@]+"${thesis_floor[@]}"}
         ind="$d/shape.msh"
         if [ "$FF_BY" = A1h ]; then  # A1 |K|^((p+1)/2), the thesis solver's indicator (ff-indicator.py)
           ind="$d/indicator.msh"
@@ -481,7 +483,7 @@ while :; do
         sol="$d/sol-straight.msh"
         run_tool "$d" straight "$sol" "$d/sol.msh" -- meshconvert "$d/sol.msh" --order 1 -o "$sol"
       fi
-      run_tool "$d" estimate-frame "$d/shape.msh" "$sol" -- estimate-frame "$sol" -o "$d/shape.msh" ${ERROR_MODEL:+--model "$ERROR_MODEL"}
+      run_tool "$d" estimate-frame "$d/shape.msh" "$sol" -- estimate-frame "$sol" -o "$d/shape.msh" ${ERROR_MODEL:+--model "$ERROR_MODEL"} ${thesis_floor[@]+"${thesis_floor[@]}"}
       if [ "$MODE" = goal ]; then
         run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
         dwr="$d/dwr.msh"

@@ -24,9 +24,12 @@ for f in theta rho B A1 A2 phi model_A1 model_A2 p; do grep -q "^\"$f\"\$" "$T/s
 python3 "$CMP" "$T/shape.msh" "$GOLD/sshock16_p2_shape.msh" --rtol 1e-6 --atol 1e-9 || fail "SHAPE differs from the golden"
 python3 "$CMP" "$T/shape.json" "$GOLD/sshock16_p2_shape.json" --rtol 1e-6 --atol 1e-9 || fail "report differs from the golden"
 
-# --- the error model: polynomial by default; --model thesis writes its own A1, A2 as model_A1/2
+# --- the error model: polynomial by default, with the observed-error floor 4; --model thesis
+# --observed-floor 0 (the thesis exactly) writes its own A1, A2 as model_A1/2
 [ "$(json "$T/shape.json" '["options"]["model"]')" = polynomial ] || fail "default model"
-estimate-frame -q "$T/sq16.msh" --exact "$EXACT" -p 2 -o "$T/thesis.msh" --model thesis
+[ "$(json "$T/shape.json" '["options"]["observed_floor"]')" = 4.0 ] || fail "default observed floor"
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['misfit_ratio_median'] > 0 and d['cells_raised_by_misfit'] >= 0, d" "$T/shape.json" || fail "report: misfit"
+estimate-frame -q "$T/sq16.msh" --exact "$EXACT" -p 2 -o "$T/thesis.msh" --model thesis --observed-floor 0
 [ "$(json "$T/thesis.json" '["options"]["model"]')" = thesis ] || fail "report: model thesis"
 python3 - "$T/thesis.msh" "$T/shape.msh" "$SRC/tests/cli" <<'PY'
 import sys
@@ -45,7 +48,12 @@ set +e
 estimate-frame -q "$T/sq16.msh" --exact x -p 1 -o "$T/m.msh" --model bamg 2>"$T/err"; rc=$?
 set -e
 [ $rc = 2 ] && grep -q -- "--model" "$T/err" || fail "--model bamg: exit $rc, $(cat "$T/err")"
-estimate-frame --help | grep -q -- "--model" || fail "--help does not list --model"
+set +e
+estimate-frame -q "$T/sq16.msh" --exact x -p 1 -o "$T/m.msh" --observed-floor 0.5 2>"$T/err"; rc=$?
+set -e
+[ $rc = 2 ] && grep -q "observed-error floor must be 0 (off) or >= 1" "$T/err" && [ ! -e "$T/m.msh" ] || fail "--observed-floor 0.5: exit $rc, $(cat "$T/err")"
+estimate-frame --help > "$T/help.txt"  # to a file: grep -q closing a pipe early fails it under pipefail
+grep -q -- "--model" "$T/help.txt" && grep -q -- "--observed-floor" "$T/help.txt" || fail "--help does not list --model, --observed-floor"
 
 # --- deterministic for any thread count
 estimate-frame -q "$T/sq16.msh" --exact "$EXACT" -p 2 -o "$T/shape1.msh" --threads 1
