@@ -46,13 +46,14 @@ namespace {
 // not follow, would keep investing in it (uncapped, an L-shape loop at p = 3 coarsened the rest
 // of the domain 3x at its step 7 and its error rose 16x; docs/estimate-frame.md).
 constexpr double kMaxRaise = 64;
-void raise_by_misfit(const Mesh& sol, const EstimateOptions& opt, EstimateResult& r) {
+// area: |cell area| per cell.
+void raise_by_misfit(const std::vector<double>& area, const EstimateOptions& opt, EstimateResult& r) {
   const int nc = static_cast<int>(r.B.size());
   const int n = r.p + 1;
   std::vector<double> ratio(nc, 0), positive;
   for (int c = 0; c < nc; ++c) {
     if (!(r.B[c] > 0)) continue;
-    const double model = r.B[c] * std::pow(std::abs(cell_area(sol, c)), (opt.q * n + 2) / 2);
+    const double model = r.B[c] * std::pow(area[c], (opt.q * n + 2) / 2);
     ratio[c] = r.misfit[c] / model;
     positive.push_back(ratio[c]);
   }
@@ -101,6 +102,8 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
   const int nc = sol.num_cells();
   const std::vector<std::vector<int>> patches = reconstruction_patches(sol, opt.patch);
   PatchReconstructor rec(sol, f->values, p, n);
+  std::vector<double> area(nc);
+  for (int c = 0; c < nc; ++c) area[c] = std::abs(cell_area(sol, c));
 
   EstimateResult r;
   r.p = p;
@@ -126,7 +129,7 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
                            f->values[static_cast<size_t>(c) * n * n + i + n * j];
           s += opt.q == 2 ? d * d : std::pow(std::abs(d), opt.q);
         }
-      r.misfit[c] = s / (n * n) * std::abs(cell_area(sol, c));
+      r.misfit[c] = s / (n * n) * area[c];
       DirectionalExtrema d = directional_extrema(tops[c]);
       r.A1[c] = d.A1;
       r.A2[c] = d.A2;
@@ -147,17 +150,13 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
   double amax = 0, umax = 0;
   for (double a : r.A1) amax = std::max(amax, a);
   for (double v : f->values) umax = std::max(umax, std::abs(v));
-  std::vector<char> derivative_free(nc, 0);
-  for (int c = 0; c < nc; ++c) {
-    const double hk = std::sqrt(std::abs(cell_area(sol, c)));
-    if (r.A1[c] * std::pow(hk, n) <= opt.direction_floor * umax || r.A1[c] <= opt.direction_floor * amax) {
-      r.A1[c] = r.A2[c] = 0;
-      derivative_free[c] = 1;
-    }
-  }
 #pragma omp parallel for schedule(static)
   for (int c = 0; c < nc; ++c) {
-    if (derivative_free[c]) continue;
+    const double hk = std::sqrt(area[c]);
+    if (r.A1[c] * std::pow(hk, n) <= opt.direction_floor * umax || r.A1[c] <= opt.direction_floor * amax) {
+      r.A1[c] = r.A2[c] = 0;
+      continue;
+    }
     r.model_A1[c] = r.A1[c];
     r.model_A2[c] = r.A2[c];
     if (opt.model == ErrorModel::Polynomial) {
@@ -171,7 +170,7 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
     r.theta[c] = s.theta;
     r.rho[c] = s.rho;
   }
-  if (opt.observed_floor > 0) raise_by_misfit(sol, opt, r);
+  if (opt.observed_floor > 0) raise_by_misfit(area, opt, r);
   return r;
 }
 

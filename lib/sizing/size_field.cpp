@@ -157,9 +157,11 @@ ShapeData read_shape(const Mesh& shape, const std::string& source) {
   s.B = *scalar_field(shape, "B", true, source);
   // the model's bound coefficients when the SHAPE has them (estimate-frame's model_A1, model_A2),
   // else the thesis's A1, A2 (older SHAPE files: the same values with the thesis's model)
-  const bool model = scalar_field(shape, "model_A1", false, source) && scalar_field(shape, "model_A2", false, source);
-  if (auto* a1 = scalar_field(shape, model ? "model_A1" : "A1", false, source)) s.A1 = *a1;
-  if (auto* a2 = scalar_field(shape, model ? "model_A2" : "A2", false, source)) s.A2 = *a2;
+  const auto* m1 = scalar_field(shape, "model_A1", false, source);
+  const auto* m2 = scalar_field(shape, "model_A2", false, source);
+  const bool model = m1 && m2;
+  if (auto* a1 = model ? m1 : scalar_field(shape, "A1", false, source)) s.A1 = *a1;
+  if (auto* a2 = model ? m2 : scalar_field(shape, "A2", false, source)) s.A2 = *a2;
   if (s.A1.empty() != s.A2.empty()) s.A1.clear(), s.A2.clear();
   for (int k = 0; k < nc; ++k) {
     if (s.B[k] < 0) throw InputError(source, "field \"B\" is negative in " + cell_label(shape, k));
