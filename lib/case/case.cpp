@@ -200,7 +200,11 @@ Case parse_case(const std::string& text, const std::string& path) {
     for (const BoundaryData& bd : cs.neumann_data)
       if (cs.is_dirichlet(bd.boundary))
         throw InputError(path, "boundary '" + bd.boundary + "' has Neumann data but is a Dirichlet boundary" +
-                                   (cs.dirichlet_all ? " (\"dirichlet\" absent means every boundary)" : ""));
+                                   (!cs.dirichlet_all ? ""
+                                    : j.contains("dirichlet")
+                                        ? " (\"dirichlet\": \"all\" makes every boundary Dirichlet; list the Dirichlet "
+                                          "boundaries instead)"
+                                        : " (\"dirichlet\" absent means every boundary; list the Dirichlet boundaries)"));
   }
   if (j.contains("functional")) {
     const json& f = j["functional"];

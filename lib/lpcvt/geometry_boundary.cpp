@@ -110,11 +110,14 @@ BoundaryPoints geometry_boundary(const Background& bg, const BoundaryGeometry& g
                                            "a mesh of this geometry");
         // sagitta bound: a segment of length h on curvature kappa deviates
         // kappa h^2 / 8 from the curve; at most 1 / kSagittaFactor of the metric's
-        // normal spacing 1 / |M n|
+        // normal spacing 1 / |M n|. Turn bound: a segment of length h turns by kappa h,
+        // at most kTargetSegmentTurnDeg, whatever the frame asks (a small hole in a coarse
+        // region of the frame)
         const double sp = tan[i].norm();
         const double kappa = sp > 0 ? std::abs(tan[i].x() * acc.y() - tan[i].y() * acc.x()) / (sp * sp * sp) : 0.0;
         const Vec2 n = sp > 0 ? Vec2(-tan[i].y() / sp, tan[i].x() / sp) : Vec2(0, 0);
-        dl[i] = std::max(lq_norm(M * tan[i], q), sp * std::sqrt(kSagittaFactor * kappa * (M * n).norm() / 8));
+        dl[i] = std::max({lq_norm(M * tan[i], q), sp * std::sqrt(kSagittaFactor * kappa * (M * n).norm() / 8),
+                          sp * kappa / (kTargetSegmentTurnDeg * M_PI / 180)});
       }
     };
     std::vector<double> t, dl;
@@ -157,10 +160,11 @@ BoundaryPoints geometry_boundary(const Background& bg, const BoundaryGeometry& g
         ++j;
       }
       if (turn > kMaxSegmentTurnDeg)
-        throw InputError(g.source(), what + " is not resolved by the frame: its metric length " + std::to_string(L) +
-                                         " gives " + std::to_string(n) + " segments, one of which turns by " +
-                                         std::to_string(static_cast<int>(std::lround(turn))) + " degrees (at most " +
-                                         std::to_string(static_cast<int>(kMaxSegmentTurnDeg)) + ")");
+        throw InputError(g.source(), what + " turns by " + std::to_string(static_cast<int>(std::lround(turn))) +
+                                         " degrees within one of its " + std::to_string(n) + " boundary segments (at most " +
+                                         std::to_string(static_cast<int>(kMaxSegmentTurnDeg)) +
+                                         "): a corner inside the curve; split the curve at its corners into curves of "
+                                         "their own");
     }
     const std::vector<double> inner(tp.begin() + 1, tp.end() - 1);
     const std::vector<Vec2> x = g.points(k, inner);

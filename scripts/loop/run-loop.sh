@@ -7,6 +7,12 @@
 #               [--max-anisotropy A] [--start-jitter J] [--fit-frame raw|meshed|capped] [--phases N]
 #               [--walls slide|fixed] [--r-max R] [--c-max C] [--size-gradation G] [--error-model polynomial|thesis]
 #               [--pictures yes|no] [--window x0,x1,y0,y1] [--thesis-case KEY] [--check-only]
+#               [--geometry FILE.geo [--order Q]] [--jitter J] [-h|--help]
+#
+# Each option is the make variable of the same name (--max-anisotropy = MAX_ANISOTROPY, ...); what
+# they do and their defaults: docs/loop.md. Example:
+#   run-loop.sh --case examples/cases/sshock.json --mesh examples/meshes/square16.msh --p 2 \
+#               --method lpcvt --mode feature --steps 6 --growth 1.5 --maxdofs 2e4 --out runs/mine
 #
 # Every input is checked, and every tool the method needs is looked up, BEFORE any work starts.
 # Step K lives in DIR/step-K/: mesh.msh (its mesh), sol.msh (dgsolve), then per method
@@ -53,6 +59,7 @@ while [ $# -gt 0 ]; do
   opt="$1"
   case "$opt" in
     --check-only) CHECK_ONLY=1; shift; continue ;;
+    -h|--help) sed -n '2,/^# or options, nothing run/s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"; exit 0 ;;
   esac
   [ $# -ge 2 ] || die "option $opt needs a value"
   val="$2"; shift 2

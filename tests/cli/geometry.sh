@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # --geometry (docs/curved.md, "Geometry"): lpcvt, refine, bamgquad and meshconvert take the true
-# boundary from a CAD file through the Gmsh SDK. Bad files, files without physical names, a curve
-# the frame cannot resolve and a mesh of another domain: exit 2, one line naming the file, nothing
+# boundary from a CAD file through the Gmsh SDK. Bad files, files without physical names and a mesh
+# of another domain: exit 2, one line naming the file, nothing
 # written. Then the boundary nodes of lpcvt's points, refine's and meshconvert's output lie on the
 # circle to 1e-12, and a 2-step adaptive loop on the cylinder keeps them there (L_p-CVT, and
 # fixed-fraction with hanging nodes on curved cells).
@@ -47,9 +47,13 @@ for tool in "lpcvt $T/frame.msh" "refine $M --uniform" "bamgquad $T/frame.msh" "
   expect_refusal "bad.geo: Gmsh cannot open it" "$T/o.msh" -- $tool --geometry "$T/bad.geo" -o "$T/o.msh"
   expect_refusal "noname.geo: no named physical curves" "$T/o.msh" -- $tool --geometry "$T/noname.geo" -o "$T/o.msh"
 done
-# a frame far too coarse for the circle: a segment would turn by more than 60 degrees
-expect_refusal "cylinder.geo: curve 'cylinder' (5) is not resolved by the frame" "$T/o.msh" -- \
-  lpcvt "$T/frame.msh" --complexity 8 --degree 1 --geometry "$G" -o "$T/o.msh"
+# a frame far too coarse for the circle (its metric asks for ~6 segments, one turning 63 degrees):
+# the circle gets a segment per 45 degrees of turn instead, 8 or more (it was refused)
+lpcvt -q "$T/frame.msh" --complexity 8 --degree 1 --geometry "$G" -o "$T/coarse.msh" ||
+  fail "lpcvt on a frame coarse at the circle: exit $?"
+on_circle "$T/coarse.msh"
+n=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["nodes"])' "$T/on.json")
+[ "$n" -ge 8 ] || fail "coarse frame: $n boundary nodes on the circle (expected >= 8: 45 degrees of turn each)"
 # a geometry of another domain (the annulus 1 <= r <= 2: its outer circle leaves the channel)
 expect_refusal "annulus.geo: curve 'outer'" "$T/o.msh" -- lpcvt "$T/frame.msh" --geometry "$S/examples/geometry/annulus.geo" -o "$T/o.msh"
 expect_refusal "boundary 'inlet' is not a physical curve of" "$T/o.msh" -- \

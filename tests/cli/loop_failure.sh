@@ -50,6 +50,11 @@ tail -n 1 log2 | grep -q '\] Error 1$' || fail "make's last line does not carry 
 rc=0; "${MK[@]}" loop BIN="$PWD/bin" OUT=run-bad METHOD=simplex > log3 2>&1 || rc=$?
 [ $rc -eq 2 ] || fail "make, bad METHOD: exit $rc"
 tail -n 1 log3 | grep -q '\] Error 2$' || fail "make, bad METHOD: $(tail -n 1 log3)"
+# --help (anywhere on the line) is the usage from the script's header, exit 0, nothing run
+rc=0; "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --help --out run-help > logh 2>&1 || rc=$?
+[ $rc -eq 0 ] || fail "run-loop.sh --help: exit $rc: $(cat logh)"
+grep -q -- "--case CASE.json --mesh START.msh" logh && grep -q "Exit status" logh || fail "run-loop.sh --help: $(cat logh)"
+[ ! -e run-help ] || fail "run-loop.sh --help created its --out"
 rc=0; PATH="$PWD/bin:$PATH" "$S/scripts/loop/run-loop.sh" "${ARGS[@]}" --method simplex --out run-bad > log4 2>&1 || rc=$?
 [ $rc -eq 2 ] || fail "run-loop.sh, bad METHOD: exit $rc"
 [ ! -e run-bad ] || fail "bad input created the run directory"

@@ -127,7 +127,10 @@ TEST_CASE("case: boundary data given as expressions (map forms of dirichlet and 
   CHECK(has(case_error(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "x", "neumann": ["right"]})J"),
             "key 'neumann' must be a map"));
   CHECK(has(case_error(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "x", "neumann": {"right": "1"}})J"),
-            "boundary 'right' has Neumann data but is a Dirichlet boundary"));
+            "boundary 'right' has Neumann data but is a Dirichlet boundary (\"dirichlet\" absent means every boundary"));
+  // "dirichlet": "all" is present: the hint says so, not that the key is absent
+  CHECK(has(case_error(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "x", "dirichlet": "all", "neumann": {"right": "1"}})J"),
+            "Dirichlet boundary (\"dirichlet\": \"all\" makes every boundary Dirichlet"));
   CHECK(has(case_error(R"J({"diffusion": [[1, 0], [0, 1]], "exact": "x", "dirichlet": ["left"],
                            "neumann": {"left": "1"}})J"),
             "boundary 'left' has Neumann data but is a Dirichlet boundary"));

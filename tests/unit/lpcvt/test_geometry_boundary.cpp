@@ -43,10 +43,34 @@ TEST_CASE("geometry_boundary: a constant metric puts round(2 pi / h) equally spa
   }
 }
 
-TEST_CASE("geometry_boundary: a frame too coarse for the curve, and a geometry outside the frame, are refused") {
+TEST_CASE("geometry_boundary: a frame too coarse for the curve gets a segment per 45 degrees of turn") {
+  // M = I / 3 asks for 2 pi / 3 ~ 2 segments on the unit circle; the turn bound dL >= kappa / (pi / 4)
+  // gives 8, each turning 45 degrees (the loop's frame is coarse where a small hole sits in a smooth
+  // region: it was refused, "not resolved by the frame")
+  for (double h : {3.0, 2.0}) {  // the sagitta term sqrt(2 / h) < 4 / pi: the turn bound alone
+    CAPTURE(h);
+    std::vector<BoundaryGroup> groups;
+    const BoundaryPoints b = geometry_boundary(disk_background(h), kCircle, groups);
+    CHECK(b.points.size() == 8);
+    CHECK(b.curve_length[0] == doctest::Approx(8).epsilon(1e-6));
+    for (const auto& s : b.segments)  // chord of a 45 degree arc
+      CHECK((b.points[s[0]] - b.points[s[1]]).norm() == doctest::Approx(2 * std::sin(M_PI / 8)).epsilon(1e-6));
+  }
+  // where the metric asks for more (h = 0.3: 21 points), the turn bound is inactive (the test above)
+}
+
+TEST_CASE("geometry_boundary: a corner inside one curve, and a geometry outside the frame, are refused") {
   std::vector<BoundaryGroup> groups;
-  CHECK_THROWS_WITH_AS(geometry_boundary(disk_background(3.0), kCircle, groups),
-                       doctest::Contains("circle.geo: curve 'wall' (1) is not resolved by the frame"), InputError);
+  // the square |x|, |y| <= 0.5 as ONE closed curve, t in [0, 4): a 90 degree turn no point count resolves
+  auto side = [](double t) { return std::min(3, static_cast<int>(std::floor(t))); };
+  const Vec2 corner[5] = {Vec2(-0.5, -0.5), Vec2(0.5, -0.5), Vec2(0.5, 0.5), Vec2(-0.5, 0.5), Vec2(-0.5, -0.5)};
+  FunctionGeometry::Curve sq{"wall", 0, 4,
+                             [&](double t) { const int k = side(t); return Vec2(corner[k] + (t - k) * (corner[k + 1] - corner[k])); },
+                             [&](double t) { const int k = side(t); return Vec2(corner[k + 1] - corner[k]); },
+                             [](double) { return Vec2(0, 0); }};
+  const FunctionGeometry square("square.geo", {sq});
+  CHECK_THROWS_WITH_AS(geometry_boundary(disk_background(0.1), square, groups),
+                       doctest::Contains("square.geo: curve 'wall' (1) turns by 90 degrees within one of its"), InputError);
   const FunctionGeometry big("big.geo", {FunctionGeometry::circle("wall", Vec2(0, 0), 1.5)});
   CHECK_THROWS_WITH_AS(geometry_boundary(disk_background(0.1), big, groups),
                        doctest::Contains("outside the frame's domain"), InputError);
