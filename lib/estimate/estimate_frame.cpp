@@ -146,7 +146,7 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
 
   // Noise floor: a cell whose degree-(p+1) term changes u by at most direction_floor · max|u|
   // over the cell (A1 h_k^n), or whose A1 is below direction_floor · max A1, has no meaningful
-  // derivative: A1 = A2 = 0, B = 0, isotropic θ = 0, ρ = 1.
+  // derivative: A1 = A2 = 0, phi = 0, B = 0, isotropic θ = 0, ρ = 1.
   double amax = 0, umax = 0;
   for (double a : r.A1) amax = std::max(amax, a);
   for (double v : f->values) umax = std::max(umax, std::abs(v));
@@ -154,8 +154,9 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
   for (int c = 0; c < nc; ++c) {
     const double hk = std::sqrt(area[c]);
     if (r.A1[c] * std::pow(hk, n) <= opt.direction_floor * umax || r.A1[c] <= opt.direction_floor * amax) {
-      r.A1[c] = r.A2[c] = 0;
-      continue;
+      r.A1[c] = r.A2[c] = r.phi[c] = 0;  // phi: the direction of a noise term would differ between
+      continue;                           // a field and its mirror image
+
     }
     r.model_A1[c] = r.A1[c];
     r.model_A2[c] = r.A2[c];

@@ -183,6 +183,31 @@ TEST_CASE("vanishing derivatives: no NaN or infinity") {
   }
 }
 
+TEST_CASE("noise-floor cells: every directional field zero, phi too") {
+  // u = 1e-13 (x + y)^3 (noise: below the floor) for x < 1/2 and (x - 1/2)^3 beyond, p = 2: the
+  // left cells carry no derivative. Their phi was the noise's direction (45 degrees here), which
+  // differs between a field and its mirror image
+  for (bool mirror : {false, true}) {
+    CAPTURE(mirror);
+    Mesh m = with_u(make_structured_quads(8, 8), 2, [&](double x, double y) {
+      const double s = mirror ? 0.5 - x : x - 0.5;
+      return s > 0 ? s * s * s : 1e-13 * std::pow(x + y, 3);
+    });
+    const EstimateResult r = estimate_frame(m);
+    int free = 0;
+    for (int c = 0; c < m.num_cells(); ++c) {
+      if (r.B[c] != 0) continue;
+      ++free;
+      CHECK(r.A1[c] == 0);
+      CHECK(r.A2[c] == 0);
+      CHECK(r.phi[c] == 0);
+      CHECK(r.theta[c] == 0);
+      CHECK(r.rho[c] == 1);
+    }
+    CHECK(free >= 16);  // at least the two columns away from x = 1/2
+  }
+}
+
 TEST_CASE("estimate input errors") {
   Mesh m = make_structured_quads(3, 3);
   CHECK_THROWS_AS(estimate_frame(m, {}, "sol.msh"), InputError);
