@@ -11,6 +11,7 @@
 #include "mesh/validate.hpp"
 #include "quad/quality_summary.hpp"
 #include "quad/report.hpp"
+#include "quad/frame_smooth.hpp"
 #include "quad/smooth.hpp"
 #include "frame/frame.hpp"
 #include "lpcvt/fit_frame.hpp"
@@ -171,18 +172,15 @@ int main(int argc, char** argv) {
     {
       auto ph = tool.phase("smooth");
       m.clear_fields();
-      NodeMetric metric;
-      HintedNodeMetric hinted;
-      std::unique_ptr<FrameSampler> sampler;
-      if (!frame_path.empty()) {
-        sampler = std::make_unique<FrameSampler>(frame);  // reflections removed: det M > 0
-        metric = [&](const Vec2& x) { return sampler->at(x); };
-        hinted = [&](const Vec2& x, int& hint) { return sampler->at(x, hint); };
-      }
-      if (method == "shape") {
-        shape.target_edge = 1 / Frame::cell_metric_factor();  // the frame's edge in the units of M
-        st = shape_smooth(m, shape, hinted);
+      if (method == "shape") {  // needs --frame (checked above)
+        st = shape_smooth_to_frame(m, frame, shape);
       } else {
+        NodeMetric metric;
+        std::unique_ptr<FrameSampler> sampler;
+        if (!frame_path.empty()) {
+          sampler = std::make_unique<FrameSampler>(frame);  // reflections removed: det M > 0
+          metric = [&](const Vec2& x) { return sampler->at(x); };
+        }
         st = angle_smooth(m, opt, metric);
       }
     }

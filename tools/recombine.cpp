@@ -92,13 +92,12 @@ int main(int argc, char** argv) {
       if (matching == "metric") {
         if (!frame_path.empty()) {
           tool.input(frame_path);
-          opt.frame = read_frame(frame_path).at_cells(tri);
+          opt.with_frame(read_frame(frame_path).at_cells(tri));
         } else if (tri.cell_field("Vinv")) {
-          opt.frame = frame_from_mesh(tri, in).oriented();
+          opt.with_frame(frame_from_mesh(tri, in).oriented());
         } else {
           throw InputError(in, "--matching metric needs a frame: a cell field Vinv in TRI or --frame FRAME.msh");
         }
-        opt.matching = RecombineOptions::Matching::Metric;
       } else {
         for (const char* o : {"--min-quality", "--pair-bonus", "--interior-bonus"})
           if (app.count(o))

@@ -1,5 +1,8 @@
 // One adaptation step of the thesis's method through the quadapt library, without the tools:
-// DG solve -> error model and frame -> L_p-CVT points -> all-quad mesh.
+// DG solve -> error model and frame -> L_p-CVT points -> all-quad mesh -> smoothed to the frame.
+// Each step is the library call the tool of the same name makes, with the tool's defaults, so
+// OUT.msh is byte for byte the loop's adapted.msh for the same frame (example.cpp_adapt_step
+// checks it against dgsolve | estimate-frame | size-solve | lpcvt | recombine | quadsmooth).
 //
 //   adapt_step [MESH.msh [CASE.json [OUT.msh]]]   (defaults: examples/meshes/square16.msh,
 //                                                 examples/cases/sshock.json, adapted.msh)
@@ -14,6 +17,7 @@
 #include "frame/frame.hpp"
 #include "io/msh.hpp"
 #include "lpcvt/run.hpp"
+#include "quad/frame_smooth.hpp"
 #include "quad/recombine.hpp"
 #include "sizing/size_field.hpp"
 #include "sizing/size_frame.hpp"
@@ -33,19 +37,29 @@ int main(int argc, char** argv) {
     const DGSolveResult sol = dg_solve(mesh, cs, solve);
     mesh.set_field(make_dg_field(sol.U, sol.p, mesh.num_cells()));
 
-    // 2. Frame: the error model per cell, the optimal sizes for 1.5x the DOFs, the frame field.
+    // 2. Frame: the error model per cell, the optimal sizes for 1.5x the DOFs, the frame field
+    //    (in the canonical order read_frame gives it: the tools' results to the byte).
     const Mesh shape = make_shape_mesh(mesh, estimate_frame(mesh));
     SizeOptions size;
     size.complexity = 1.5 * sol.dofs;
     const SizeResult sizes = solve_feature_size(shape, size);
-    const Frame frame = frame_from_mesh(make_frame_mesh(shape, sizes), "frame");
+    const Frame frame = canonical_frame(frame_from_mesh(make_frame_mesh(shape, sizes), "frame"));
 
-    // 3. Mesh: L_p-CVT triangles with the lpcvt tool's defaults, then Blossom-Quad + split.
+    // 3. Triangles: L_p-CVT points with the lpcvt tool's defaults (LpcvtJob::for_frame(); a
+    //    default-built LpcvtJob is the bare method: no smoothing, gradation or orientation).
     lpcvt::LpcvtJob job = lpcvt::LpcvtJob::for_frame();
     nlohmann::json report;
     const lpcvt::Background bg = lpcvt::frame_background(frame, job, report);
     const lpcvt::LpcvtResult tri = lpcvt::mesh_background(bg, job, report);
-    const Mesh quads = recombine_to_all_quads(tri.mesh);
+
+    // 4. Quads: the metric matching in the frame lpcvt meshed (attached to its triangles as Vinv)
+    //    and the split (recombine's default with a frame), then the corner fit to the frame's
+    //    squares (quadsmooth --frame).
+    RecombineOptions ro;
+    ro.with_frame(frame_from_mesh(tri.mesh, "lpcvt").oriented());
+    Mesh quads = recombine_to_all_quads(tri.mesh, ro);
+    shape_smooth_to_frame(quads, frame);
+    quads.clear_fields();
     write_msh(quads, out);
 
     std::printf("%d cells, p = %d, L2 error %.3e -> frame asks %.0f cells -> %d triangles -> %d quads (%s)\n",

@@ -76,6 +76,9 @@ void raise_by_misfit(const std::vector<double>& area, const EstimateOptions& opt
 }  // namespace
 
 EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const std::string& source) {
+  // the mesh first: a triangle mesh has no DG field either, and "no field" would hide the cause
+  if (!sol.all_quads())
+    throw InputError(source, "the DG solution mesh must be all-quad (it has triangles: dgsolve solves on quads)");
   const CellNodeField* f = sol.cell_node_field(opt.field);
   if (!f)
     throw InputError(source, "no DG solution field \"" + opt.field +
@@ -88,7 +91,6 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
   if (f->per_cell != (p + 1) * (p + 1))
     throw InputError(source, "field \"" + opt.field + "\" has " + std::to_string(f->per_cell) +
                                  " values per cell, expected (p+1)^2 = " + std::to_string((p + 1) * (p + 1)));
-  if (!sol.all_quads()) throw InputError(source, "the DG solution mesh must be all-quad");
   if (f->num_cells() != sol.num_cells())
     throw InputError(source, "field \"" + opt.field + "\" does not match the cell count");
   if (!(opt.q >= 1)) throw InputError("q must be >= 1");

@@ -122,8 +122,11 @@ Frame frame_from_mesh(const Mesh& m, const std::string& path, std::optional<Size
 }
 
 Frame read_frame(const std::string& path, std::optional<SizeConvention> convention) {
-  Frame f = frame_from_mesh(read_valid_msh(path, ValidateOptions::fields({"Vinv"})), path, convention);
   // validated in the file's numbering (messages name its cells), then put in canonical order
+  return canonical_frame(frame_from_mesh(read_valid_msh(path, ValidateOptions::fields({"Vinv"})), path, convention));
+}
+
+Frame canonical_frame(Frame f) {
   Renumbering r;
   f.mesh = canonical_order(f.mesh, &r);
   std::vector<Mat2> M(f.M.size());
@@ -155,7 +158,12 @@ Mesh frame_mesh(const Frame& f) {
 
 void write_frame(const Frame& f, const std::string& path) { write_msh(frame_mesh(f), path); }
 
-FrameSampler::FrameSampler(const Frame& f) : oriented_(f.oriented()), locator_(f.mesh) {}
+FrameSampler::FrameSampler(const Frame& f) : oriented_(f.oriented()), locator_(f.mesh) {
+  if (f.num_cells() == 0 || f.num_cells() != f.mesh.num_cells())
+    throw InputError("", "FrameSampler: the frame has " + std::to_string(f.num_cells()) + " matrices M for a background of " +
+                             std::to_string(f.mesh.num_cells()) + " cells (an empty or default-built Frame? read it "
+                             "with read_frame or frame_from_mesh)");
+}
 
 std::vector<Mat2> Frame::at_cells(const Mesh& m, int* outside) const {
   const FrameSampler sampler(*this);

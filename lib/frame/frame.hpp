@@ -93,6 +93,11 @@ Frame frame_from_mesh(const Mesh& m, const std::string& path, std::optional<Size
 /// tools' outputs do not depend on the file's numbering (validation messages name the file's
 /// own cell numbers).
 Frame read_frame(const std::string& path, std::optional<SizeConvention> convention = {});
+/// The frame with its background in the canonical order of mesh/canonical.hpp (cells and M
+/// renumbered together): what read_frame returns. A library caller whose frame never went
+/// through a file gets the tools' results byte for byte with it (lpcvt, quadsmooth read their
+/// frames with read_frame).
+Frame canonical_frame(Frame f);
 
 /// Sets the field "Vinv" (quadapt convention) and the $FrameConvention tag of m.
 void set_frame_field(Mesh& m, const std::vector<Mat2>& M);
@@ -102,7 +107,8 @@ Mesh frame_mesh(const Frame& f);
 void write_frame(const Frame& f, const std::string& path);
 
 /// M at a point: the frame's M (oriented) of the background cell containing x, or of the
-/// nearest cell when x lies outside. Holds a reference to the frame.
+/// nearest cell when x lies outside. Holds a reference to the frame. Throws InputError when the
+/// frame has no cells or not one M per background cell.
 class FrameSampler {
  public:
   explicit FrameSampler(const Frame& f);

@@ -8,6 +8,8 @@
 
 #include <stdexcept>
 
+#include "core/error.hpp"
+
 namespace quadapt {
 
 namespace {
@@ -34,10 +36,10 @@ Mesh metric_pairing(const Mesh& tri, const std::vector<Eigen::Matrix2d>& M,
                     const MetricMatchingOptions& opt, MetricMatchingStats* stats) {
   const int nt = tri.num_cells();
   if (!M.empty() && static_cast<int>(M.size()) != nt)
-    throw std::logic_error("metric_pairing: " + std::to_string(M.size()) + " frame matrices for " +
-                        std::to_string(nt) + " triangles");
+    throw InputError("", "metric_pairing: " + std::to_string(M.size()) + " frame matrices for " + std::to_string(nt) +
+                             " triangles (one M per triangle: Frame::at_cells(tri))");
   for (const Cell& c : tri.cells)
-    if (c.nv != 3) throw std::logic_error("metric_pairing: the input must be all triangles");
+    if (c.nv != 3) throw InputError("", "metric_pairing: the input must be all triangles (a cell has " + std::to_string(c.nv) + " vertices)");
   // interior edges: (min, max) vertex pair -> the two triangles and their opposite vertices
   struct HalfEdge {
     int a, b, t, opp;
@@ -117,7 +119,7 @@ Mesh metric_pairing(const Mesh& tri, const std::vector<Eigen::Matrix2d>& M,
   double qsum = 0;
   for (int k : chosen) {
     const Pair& p = pairs[k];
-    if (used[p.t1] || used[p.t2]) throw std::logic_error("metric_pairing: a triangle matched twice");
+    if (used[p.t1] || used[p.t2]) throw Error("metric_pairing: a triangle matched twice (internal error)");
     used[p.t1] = used[p.t2] = 1;
     Cell c;
     c.v = p.quad;

@@ -22,6 +22,16 @@ struct RecombineOptions {
   MetricMatchingOptions metric;
   BlossomOptions blossom;
   bool split = true;  ///< false: stop at the quad-dominant mesh (for inspection)
+
+  /// The recombine tool's choice when a frame is known (TRI's cell field Vinv or --frame): the
+  /// metric matching on M, one oriented frame matrix per input triangle — Frame::at_cells(tri)
+  /// for a frame of its own background, frame_from_mesh(tri, path).oriented() for TRI's Vinv.
+  /// Keeps the other options. The default-built options use Blossom (no frame needed).
+  RecombineOptions& with_frame(std::vector<Eigen::Matrix2d> M) {
+    frame = std::move(M);
+    matching = Matching::Metric;
+    return *this;
+  }
 };
 
 struct RecombineStats {

@@ -300,6 +300,11 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const NodeMetri
 }
 
 SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const HintedNodeMetric& metric) {
+  // the documented ranges, for library callers (the tool checks its flags in lib/cli/option_ranges.cpp)
+  if (!(opt.relaxation > 0 && opt.relaxation < 2) || opt.sweeps < 0 || !(opt.target_edge > 0) ||
+      !(opt.size_min > 0 && opt.size_min <= opt.size_max) || opt.max_halvings < 0 || !(opt.tolerance >= 0))
+    throw InputError("", "ShapeSmoothOptions out of range: relaxation in (0, 2), sweeps >= 0, target_edge > 0, "
+                         "0 < size_min <= size_max, max_halvings >= 0, tolerance >= 0");
   SmoothStats st;
   const int nn = m.num_nodes();
   const Topology topo = build_topology(m);

@@ -87,6 +87,12 @@ TEST_CASE("unknown convention words and bad frames are InputErrors naming the fi
   CHECK_THROWS_WITH_AS(read_msh(bad, "e.msh"), doctest::Contains("empty $FrameConvention"), InputError);
 }
 
+TEST_CASE("an empty or default-built frame is an InputError where it is sampled, not an out-of-range read") {
+  const Frame empty;
+  CHECK_THROWS_WITH_AS(FrameSampler{empty}, doctest::Contains("the frame has 0 matrices M"), InputError);
+  CHECK_THROWS_AS(empty.at_cells(make_structured_quads(2, 2)), InputError);
+}
+
 TEST_CASE("reflections: kept in M, removed by oriented(); the count is unchanged") {
   Mat2 F = Eigen::Vector2d(8, 32).asDiagonal();
   F.row(0) *= -1;  // det < 0

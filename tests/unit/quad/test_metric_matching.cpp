@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/error.hpp"
 #include "quad/metric_matching.hpp"
 
 using namespace quadapt;
@@ -100,6 +101,17 @@ TEST_CASE("metric pairing: an odd triangle count leaves one triangle, a sheared-
   CHECK(st.quads == 0);
   metric_pairing(two, {}, {}, &st);
   CHECK(st.quads == 1);
+}
+
+TEST_CASE("metric pairing: a frame of the wrong size or a quad input is an InputError (a library caller's mistake)") {
+  const Eigen::Matrix2d M = frame(1, 1, 0);
+  const Mesh tri = lattice(3, 1, M);  // 6 triangles
+  CHECK_THROWS_WITH_AS(metric_pairing(tri, std::vector<Eigen::Matrix2d>(3, M), {}), doctest::Contains("3 frame matrices for 6 triangles"),
+                       InputError);
+  Mesh quad = tri;
+  quad.cells[0].nv = 4;
+  quad.cells[0].v[3] = quad.cells[1].v[1];
+  CHECK_THROWS_AS(metric_pairing(quad, {}, {}), InputError);
 }
 
 TEST_CASE("metric pairing: the interior bonus leaves the lone triangle at the wall") {

@@ -7,6 +7,9 @@
 
 #include "quad/mesh_utils.hpp"
 #include "quad/quality_summary.hpp"
+#include "core/error.hpp"
+#include "frame/frame.hpp"
+#include "quad/frame_smooth.hpp"
 #include "quad/smooth.hpp"
 #include "quad/subdivide.hpp"
 #include "mesh/jitter.hpp"
@@ -525,4 +528,32 @@ TEST_CASE("shape_smooth: colours of >= 2048 nodes move in parallel, the same mes
   for (int v = 0; v < start.num_nodes(); ++v) differ += one.nodes[v] != two.nodes[v];
   CHECK(differ == 0);
   CHECK(quality_summary(two).inverted == 0);
+}
+
+TEST_CASE("shape_smooth_to_frame: quadsmooth --frame's fit; an empty frame is an InputError") {
+  // a constant frame of half-axes h: its target edge 2h in physical space. A jittered grid of
+  // squares of side 2h is pulled back to squares (the mean corner angle deviation falls)
+  const int n = 6;
+  const double h = 0.5 / n;
+  Frame f;
+  f.mesh = make_structured_quads(2, 2);
+  f.M.assign(4, Mat2::Identity() / h);
+  Mesh m = make_perturbed_quads(n, n, 0.25, 3);
+  const double before = quality_summary(m).min_angle_deg;
+  const SmoothStats st = shape_smooth_to_frame(m, f);
+  CHECK(st.sweeps > 0);
+  CHECK(quality_summary(m).min_angle_deg > before + 5);
+  Mesh untouched = make_perturbed_quads(n, n, 0.25, 3);
+  CHECK_THROWS_AS(shape_smooth_to_frame(untouched, Frame{}), InputError);
+}
+
+TEST_CASE("shape_smooth: options outside their documented ranges are an InputError") {
+  Mesh m = make_perturbed_quads(3, 3, 0.2, 1);
+  ShapeSmoothOptions o;
+  o.relaxation = 5;
+  CHECK_THROWS_AS(shape_smooth(m, o), InputError);
+  o = ShapeSmoothOptions{};
+  o.sweeps = -1;
+  CHECK_THROWS_AS(shape_smooth(m, o), InputError);
+  CHECK(m.nodes == make_perturbed_quads(3, 3, 0.2, 1).nodes);  // nothing moved
 }
