@@ -18,6 +18,7 @@ const char* const kHeader = "// Gmsh options written by quadapt (lib/io/gmsh_opt
 std::string gmsh_view_options(const Mesh& m) {
   std::ostringstream o;
   const int nf = static_cast<int>(m.cell_fields.size());
+  const int nviews = nf + static_cast<int>(m.cell_node_fields.size());
   bool any = false;
   for (size_t k = 0; k < m.cell_node_fields.size(); ++k) {
     const CellNodeField& f = m.cell_node_fields[k];
@@ -29,9 +30,13 @@ std::string gmsh_view_options(const Mesh& m) {
     while ((1 << level) < 2 * f.degree) ++level;
     const double cells = std::max(1, m.num_cells());
     while (level > 1 && cells * std::pow(4.0, level) > 4e6) --level;
-    o << "View[" << i << "].AdaptVisualizationGrid = 1;\n"
-      << "View[" << i << "].MaxRecursionLevel = " << level << ";\n"
-      << "View[" << i << "].TargetError = -1;\n";
+    // the file's views are the last nviews Gmsh holds when it merges this file (other files
+    // opened before it come first): index them from PostProcessing.NbViews, not from 0
+    std::ostringstream idx;
+    idx << "View[PostProcessing.NbViews - " << (nviews - i) << "]";
+    o << idx.str() << ".AdaptVisualizationGrid = 1;\n"
+      << idx.str() << ".MaxRecursionLevel = " << level << ";\n"
+      << idx.str() << ".TargetError = -1;\n";
   }
   return any ? o.str() : "";
 }

@@ -3,12 +3,15 @@
 // Gmsh shows the high-order solution smoothly on open. Gmsh merges "FILE.opt" automatically when
 // it opens FILE (General.* / View[i].* statements in its .geo syntax).
 //
-// For every DG CellNodeField (degree p >= 1; view index i = its position among the views as
-// write_msh orders them: the CellFields first, then the CellNodeFields):
-//   View[i].AdaptVisualizationGrid = 1;   evaluate the interpolation scheme on a refined grid
-//   View[i].MaxRecursionLevel = L;        each cell drawn as 4^L sub-quads, 2^L >= 2p, capped
-//                                         so that cells * 4^L <= 4e6 (L >= 1)
-//   View[i].TargetError = -1;             refine uniformly to level L (no early stop)
+// For every DG CellNodeField (degree p >= 1; i = its position among the file's n views as
+// write_msh orders them: the CellFields first, then the CellNodeFields), with
+// V = View[PostProcessing.NbViews - (n - i)] — the file's views are the last n Gmsh holds when
+// it merges FILE.opt, also when other files were opened before (`gmsh a.msh b.msh`; View[i]
+// would set a.msh's views from b.msh's options):
+//   V.AdaptVisualizationGrid = 1;   evaluate the interpolation scheme on a refined grid
+//   V.MaxRecursionLevel = L;        each cell drawn as 4^L sub-quads, 2^L >= 2p, capped
+//                                   so that cells * 4^L <= 4e6 (L >= 1)
+//   V.TargetError = -1;             refine uniformly to level L (no early stop)
 // Other views keep Gmsh's defaults (all visible; pick one in Gmsh's view list).
 #include <string>
 

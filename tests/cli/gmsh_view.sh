@@ -11,11 +11,18 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 cp "$S/examples/meshes/square16.msh" "$T/sq.msh"
 dgsolve -q "$T/sq.msh" -c "$S/examples/cases/smooth.json" -p 3 -o "$T/sol.msh"
 [ -s "$T/sol.msh.opt" ] || fail "dgsolve wrote no sol.msh.opt"
-grep -q '^View\[0\].AdaptVisualizationGrid = 1;$' "$T/sol.msh.opt" || fail "no AdaptVisualizationGrid"
+grep -q '^View\[PostProcessing.NbViews - 1\].AdaptVisualizationGrid = 1;$' "$T/sol.msh.opt" || fail "no AdaptVisualizationGrid"
 # Gmsh reads FILE.opt by itself on open (batch mode '-': parse the files, then exit)
 printf 'Printf("adapt=%%g level=%%g", View[0].AdaptVisualizationGrid, View[0].MaxRecursionLevel);\n' > "$T/chk.geo"
 out=$(cd "$T" && gmsh sol.msh chk.geo - 2>&1)
 grep -q 'adapt=1 level=3' <<<"$out" || fail "Gmsh did not apply sol.msh.opt: $(echo "$out" | grep adapt)"
+# two solutions opened together (p = 3, then p = 2): each file's options reach its own view (with
+# View[0] in both, the second file's set the first view and left its own blocky)
+dgsolve -q "$T/sq.msh" -c "$S/examples/cases/smooth.json" -p 2 -o "$T/sol2.msh"
+printf 'Printf("v0 adapt=%%g level=%%g", View[0].AdaptVisualizationGrid, View[0].MaxRecursionLevel);\nPrintf("v1 adapt=%%g level=%%g", View[1].AdaptVisualizationGrid, View[1].MaxRecursionLevel);\n' > "$T/chk2.geo"
+out=$(cd "$T" && gmsh sol.msh sol2.msh chk2.geo - 2>&1)
+grep -q 'v0 adapt=1 level=3' <<<"$out" && grep -q 'v1 adapt=1 level=2' <<<"$out" ||
+  fail "two files opened together: $(echo "$out" | grep adapt)"
 # without the file Gmsh's default is blocky (0): the check above can fail
 mv "$T/sol.msh.opt" "$T/keep.opt"
 out=$(cd "$T" && gmsh sol.msh chk.geo - 2>&1)

@@ -37,12 +37,14 @@ TEST_CASE("gmsh .opt: one block per DG view at its view index, level 2^L >= 2p, 
   CellNodeField u{"u", 1, 9, 2, std::vector<double>(16 * 9, 0.0)};
   m.set_field(u);
   std::string t = gmsh_view_options(m);
-  CHECK(t.find("View[1].AdaptVisualizationGrid = 1;") != std::string::npos);  // after the cell field
-  CHECK(t.find("View[1].MaxRecursionLevel = 2;") != std::string::npos);       // p = 2: 2^2 >= 4
+  // the file's second of two views, counted from the last view Gmsh holds (other files may be open)
+  CHECK(t.find("View[PostProcessing.NbViews - 1].AdaptVisualizationGrid = 1;") != std::string::npos);
+  CHECK(t.find("View[PostProcessing.NbViews - 1].MaxRecursionLevel = 2;") != std::string::npos);  // p = 2: 2^2 >= 4
+  CHECK(t.find("NbViews - 2") == std::string::npos);  // the cell field keeps Gmsh's defaults
   CHECK(t.find("View[0]") == std::string::npos);
   Mesh big = make_structured_quads(300, 300);  // 9e4 cells: 4^L <= 44 -> L = 2 even for p = 8
   CellNodeField u8{"u", 1, 81, 8, std::vector<double>(90000 * 81, 0.0)};
   big.set_field(u8);
   t = gmsh_view_options(big);
-  CHECK(t.find("View[0].MaxRecursionLevel = 2;") != std::string::npos);
+  CHECK(t.find("View[PostProcessing.NbViews - 1].MaxRecursionLevel = 2;") != std::string::npos);
 }
