@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
     else {
       std::string base = in.substr(in.find_last_of('/') + 1);
       opt.title = base + (field.empty() ? "" : "  [" + std::string(log10 ? "log10 " : "") + field + "]") + "  " +
-                  std::to_string(m.num_cells()) + " cells";
+                  std::to_string(m.num_cells()) + " cells" + (window.empty() ? "" : ", window " + window);
     }
     plot::MeshPlotSummary s;
     std::string svg;
