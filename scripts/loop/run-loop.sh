@@ -204,7 +204,7 @@ else
   # steps after 0 straight-sided, silently)
   q="$(command -v meshquality >/dev/null 2>&1 && meshquality -q "$MESH" 2>/dev/null | grep -o '"geometric_order": *[0-9]*' | grep -o '[0-9]*$' || true)"
   if [ -n "$q" ] && [ "$q" -gt 1 ]; then
-    curved_start=yes  # step 0's solution is curved: the frame tools take its vertex view
+    curved_start=yes  # step 0's solution is curved: size-solve takes the vertex view of its dwr.msh
     case "$METHOD" in
       uniform|fixed-fraction)
         die "MESH '$MESH' is curved (geometric order $q) and no GEOMETRY is given: refine splits straight-sided cells only; start from its straight view (meshconvert $MESH --order 1 -o STRAIGHT.msh), with GEOMETRY=FILE.geo to keep the boundary curved (docs/curved.md)" ;;
@@ -483,13 +483,14 @@ while :; do
           refine "$ind" --fraction "$FRACTION" --by "$FF_BY" ${geo[@]+"${geo[@]}"} -o "$d/adapted.msh"
       fi ;;
     lpcvt|bamg)
+      # estimate-frame reads the curved solution itself (the reconstruction on the map; its
+      # SHAPE is the vertex view the frame tools mesh). Until session 31 it read the vertex view of
+      # sol.msh (meshconvert --order 1), where u_h's values sit on straight cells: at a curved wall
+      # the sagitta then showed as a misfit, and the observed-error floor raised B of the wall's
+      # boundary-layer cells 64x (cylinder p = 3, step 5: 475 of 980 wall cells; 2 on the map)
       sol="$d/sol.msh" geo=() curved=""
       [ -n "$GEOMETRY" ] && geo=(--geometry "$GEOMETRY") curved=yes
       [ "$k" = 0 ] && [ "${curved_start:-}" = yes ] && curved=yes  # a curved MESH without GEOMETRY
-      if [ -n "$curved" ]; then  # the frame tools work on the vertex view of the curved solution
-        sol="$d/sol-straight.msh"
-        run_tool "$d" straight "$sol" "$d/sol.msh" -- meshconvert "$d/sol.msh" --order 1 -o "$sol"
-      fi
       run_tool "$d" estimate-frame "$d/shape.msh" "$sol" -- estimate-frame "$sol" -o "$d/shape.msh" ${ERROR_MODEL:+--model "$ERROR_MODEL"} ${thesis_floor[@]+"${thesis_floor[@]}"}
       if [ "$MODE" = goal ]; then
         run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
