@@ -156,9 +156,9 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
   for (int c = 0; c < nc; ++c) {
     const double hk = std::sqrt(area[c]);
     if (r.A1[c] * std::pow(hk, n) <= opt.direction_floor * umax || r.A1[c] <= opt.direction_floor * amax) {
-      r.A1[c] = r.A2[c] = r.phi[c] = 0;  // phi: the direction of a noise term would differ between
-      continue;                           // a field and its mirror image
-
+      // phi too: the direction of a noise term would differ between a field and its mirror image
+      r.A1[c] = r.A2[c] = r.phi[c] = 0;
+      continue;
     }
     r.model_A1[c] = r.A1[c];
     r.model_A2[c] = r.A2[c];
