@@ -130,6 +130,12 @@ for k in 0 1 2; do
   on_circle "$T/loop/step-$k/mesh.msh" "$straight"
   on_circle "$T/loop/step-$k/straight.msh"
 done
+# estimate-frame read the curved solution (its report's geometric_order is SOL's), not its vertex
+# view: there the sagitta showed as misfit and the observed-error floor raised the wall's cells
+for k in 0 1; do
+  go=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['geometric_order'])" "$T/loop/step-$k/shape.json")
+  [ "$go" -ge 2 ] || fail "step-$k: estimate-frame read a solution of geometric order $go (the vertex view?)"
+done
 
 # --- a 2-step fixed-fraction loop on the true geometry (p = 2): hanging nodes on curved cells
 # (refine splits the vertex view and snaps its new boundary nodes; the boundary cells are curved
