@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
             "ratio to the model's error at the cell's size, B is raised by the excess: a smooth Taylor "
             "model under-predicts singular and unresolved cells. rho is capped at --max-anisotropy; cells "
             "whose (p+1)-th term is rounding noise "
-            "get A1 = A2 = B = 0, theta = 0, rho = 1. SOL may have curved cells (geometric order 2..6): "
+            "get A1 = A2 = B = 0, phi = theta = 0, rho = 1. SOL may have curved cells (geometric order 2..6): "
             "the field lives and is reconstructed on their curved map. Output: SOL's geometry (the "
             "vertex view of curved cells) and boundary groups with cell fields theta, rho, B, A1, A2, "
             "phi, model_A1, model_A2 (the thesis bound's coefficients that give the model's rho and B: "

@@ -488,10 +488,10 @@ while :; do
       # sol.msh (meshconvert --order 1), where u_h's values sit on straight cells: at a curved wall
       # the sagitta then showed as a misfit, and the observed-error floor raised B of the wall's
       # boundary-layer cells 64x (cylinder p = 3, step 5: 475 of 980 wall cells; 2 on the map)
-      sol="$d/sol.msh" geo=() curved=""
+      geo=() curved=""
       [ -n "$GEOMETRY" ] && geo=(--geometry "$GEOMETRY") curved=yes
       [ "$k" = 0 ] && [ "${curved_start:-}" = yes ] && curved=yes  # a curved MESH without GEOMETRY
-      run_tool "$d" estimate-frame "$d/shape.msh" "$sol" -- estimate-frame "$sol" -o "$d/shape.msh" ${ERROR_MODEL:+--model "$ERROR_MODEL"} ${thesis_floor[@]+"${thesis_floor[@]}"}
+      run_tool "$d" estimate-frame "$d/shape.msh" "$d/sol.msh" -- estimate-frame "$d/sol.msh" -o "$d/shape.msh" ${ERROR_MODEL:+--model "$ERROR_MODEL"} ${thesis_floor[@]+"${thesis_floor[@]}"}
       if [ "$MODE" = goal ]; then
         run_tool "$d" adjoint "$d/dwr.msh" "$d/sol.msh" -- adjoint "$d/sol.msh" -c "$CASE" -o "$d/dwr.msh"
         dwr="$d/dwr.msh"
