@@ -50,6 +50,12 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--rtol", opt.solver.rtol, "Relative residual tolerance of iterative solvers")
       ->capture_default_str();
+  app.add_option("--coarse-degree", opt.solver.coarse_degree,
+                 "gmres-2level's coarse space: continuous Q_q on the mesh, q = this (0 = auto: min(P, 2); at most P). "
+                 "q = 2 keeps GMRES at ~15-30 iterations on the stretched cells of boundary layers, where q = 1 needs 40-100 "
+                 "(docs/bench-dgsolve.md)")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str();
   app.add_option("--penalty", opt.dg.penalty_factor, "SIPG penalty factor (sigma = factor p(p+1) n^T D n / h)")
       ->capture_default_str();
 
@@ -127,6 +133,7 @@ int main(int argc, char** argv) {
     rep["solver"] = r.solve.solver;
     rep["solver_iterations"] = r.solve.iterations;
     rep["solver_relative_residual"] = r.solve.relative_residual;
+    rep["solver_coarse_degree"] = r.solve.coarse_degree;
     rep["time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   });
 }

@@ -89,7 +89,7 @@ Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, con
   const BlockSparseMatrix& At = A;
   o.block_size = nb;
   o.pure_advection = pure_advection;
-  const VertexCoarseSpace coarse = make_vertex_coarse_space(mesh, pf);
+  const CoarseSpace coarse = make_coarse_space(mesh, pf, coarse_degree(pf, o.coarse_degree));
   o.coarse = &coarse;
   const LinearSolverKind kind = o.kind;
   const bool iterative = kind != LinearSolverKind::UmfPack && kind != LinearSolverKind::SparseLU &&
@@ -204,6 +204,7 @@ nlohmann::json to_json(const DWRResult& r) {
   j["solver"] = r.solve.solver;
   j["solver_iterations"] = r.solve.iterations;
   j["solver_relative_residual"] = r.solve.relative_residual;
+  j["solver_coarse_degree"] = r.solve.coarse_degree;
   j["solver_fallback"] = r.solve.fallback;
   j["solver_setup_s"] = r.solve.setup_seconds;
   j["solver_solve_s"] = r.solve.solve_seconds;

@@ -239,6 +239,7 @@ bool solve_iterative(LinearSolverKind kind, const SparseMatrixCSC& A, const Bloc
     if (kind == LinearSolverKind::GmresTwoLevel) {
       if (!opt.coarse) throw NumericalError("gmres-2level needs the mesh's coarse space");
       two.compute(*B, *opt.coarse, opt.post_smooth, opt.block_order);
+      info.coarse_degree = opt.coarse->degree;
       pre = [&](const VectorXd& r, VectorXd& z) { two.apply(r, z); };
     } else if (kind == LinearSolverKind::GmresBlockJacobi) {
       jac.compute(*B);

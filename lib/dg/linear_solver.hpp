@@ -39,7 +39,8 @@ struct LinearSolverOptions {
                              ///< the rounding level of A x is accepted too)
   int max_iterations = 3000; ///< total Krylov iterations
   int restart = 80;          ///< GMRES restart length
-  const VertexCoarseSpace* coarse = nullptr;  ///< coarse space of gmres-2level
+  const CoarseSpace* coarse = nullptr;  ///< coarse space of gmres-2level (make_coarse_space)
+  int coarse_degree = 0;     ///< degree q of the coarse space the callers build (0 = auto: min(p, 2))
   bool post_smooth = true;   ///< gmres-2level: smooth after the coarse correction too
   std::vector<int> block_order;  ///< elimination order of the block ILU (empty = natural)
   bool pure_advection = false;   ///< auto: no diffusion (the coarse space would not help)
@@ -53,6 +54,7 @@ struct LinearSolveInfo {
   double setup_seconds = 0;       ///< factorisation / preconditioner set-up
   double solve_seconds = 0;       ///< solve phase
   bool fallback = false;          ///< auto fell back to the direct solver
+  int coarse_degree = 0;          ///< q of gmres-2level's coarse space when it was used, else 0
 };
 
 /// When `info` is a fall-back to the direct solver: one sentence saying so, for a tool's

@@ -132,9 +132,9 @@ DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& o
   t0 = std::chrono::steady_clock::now();
   LinearSolverOptions so = opt.solver;
   so.block_size = dg.dofs_per_cell();
-  VertexCoarseSpace coarse;
+  CoarseSpace coarse;
   if (!cs.advection_only()) {
-    coarse = make_vertex_coarse_space(mesh, opt.p);
+    coarse = make_coarse_space(mesh, opt.p, coarse_degree(opt.p, so.coarse_degree));
     so.coarse = &coarse;
   }
   so.pure_advection = cs.advection_only();

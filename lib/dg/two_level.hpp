@@ -1,14 +1,22 @@
 #pragma once
 // Two-level preconditioner for the DG system: block ILU(0) on the cell blocks as smoother and
-// a coarse-grid correction in the space of continuous bilinear functions on the mesh vertices
-// (Dobrev, Lazarov, Vassilevski, Zikatanov, Numer. Linear Algebra Appl. 13, 2006: a continuous
-// coarse space has no jumps, so the large SIPG penalty does not spoil it; the smoother handles
-// the jumps and the high-order modes).
+// a coarse-grid correction in a space of continuous functions on the mesh (Dobrev, Lazarov,
+// Vassilevski, Zikatanov, Numer. Linear Algebra Appl. 13, 2006: a continuous coarse space has no
+// jumps, so the large SIPG penalty does not spoil it; the smoother handles the jumps and the
+// high-order modes).
 //
-// Coarse space: one unknown per mesh node (hanging nodes included, so it is continuous except
-// across 2:1 faces — harmless for a preconditioner). Prolongation P: in cell K the DG nodal
-// values are the bilinear interpolant of the 4 vertex values, P_K(a, k) = N_k(xi_a, eta_a).
-// Coarse matrix A_c = P^T A P (Galerkin), factorised by UMFPACK.
+// Coarse space: continuous Q_q on the mesh (q = the coarse degree, 1 <= q <= p), nodal at the
+// degree-q Gauss-Lobatto points of each cell: the mesh nodes (hanging nodes included, so it is
+// continuous except across 2:1 faces — harmless for a preconditioner), q - 1 points inside each
+// edge (shared by the edge's two cells) and (q - 1)^2 inside each cell. Prolongation P: in cell K
+// the DG nodal values are the degree-q interpolant of the cell's coarse values, P_K(a, k) =
+// l^q_kx(x_i) l^q_ky(x_j) at DG node a = (i, j). Coarse matrix A_c = P^T A P (Galerkin),
+// factorised by UMFPACK (no iterative refinement: a preconditioner does not need it).
+// Why q = min(p, 2) by default (measured, docs/bench-dgsolve.md "Stretched adapted meshes"): on
+// the boundary-layer loops' cells (up to ~100:1) the smooth-across, high-degree-along-the-wall
+// modes of a stack of thin cells have little energy; Q_1 does not contain them and the cell-block
+// smoother cannot reach them, so GMRES needed 44 (p = 2) to 96 (p = 3) iterations; with Q_2
+// 14-30, with Q_3 at p = 3 13-15, but Q_3's factorisation costs more than its iterations save.
 // One application (multiplicative):  z = S r;  z += P A_c^-1 P^T (r - A z);  z += S' (r - A z),
 // S = the block ILU(0) solve eliminating the cells in the given order, S' = the block ILU(0)
 // solve in the reversed order (a forward and a backward sweep, as a symmetric Gauss-Seidel
@@ -29,14 +37,20 @@
 
 namespace quadapt {
 
-/// Prolongation from vertex values to degree-p DG nodal values on each cell.
-struct VertexCoarseSpace {
-  int num_coarse = 0;                    ///< number of mesh nodes
-  int nb = 0;                            ///< (p+1)^2
-  std::vector<std::array<int, 4>> vert;  ///< per cell: its 4 node indices
-  Eigen::MatrixXd shape;                 ///< nb x 4: N_k at the GLL nodes (same for every cell)
+/// Prolongation from a continuous Q_q space to degree-p DG nodal values on each cell.
+struct CoarseSpace {
+  int degree = 1;                        ///< q
+  int num_coarse = 0;                    ///< coarse unknowns: mesh nodes, then edge, then cell points
+  int nb = 0;                            ///< (p+1)^2 DG values per cell
+  int m = 0;                             ///< (q+1)^2 coarse values per cell
+  std::vector<int> dof;                  ///< #cells x m: cell c's coarse value k = kx + (q+1) ky
+  Eigen::MatrixXd shape;                 ///< nb x m: P_K (the same for every cell)
 };
-VertexCoarseSpace make_vertex_coarse_space(const Mesh& mesh, int p);
+/// The coarse degree used when `requested` is 0 (auto): min(p, 2); else min(requested, p).
+int coarse_degree(int p, int requested);
+/// Continuous Q_degree on the mesh's quads for DG degree p (1 <= degree <= p). Throws InputError
+/// when a cell is not a quad.
+CoarseSpace make_coarse_space(const Mesh& mesh, int p, int degree);
 
 class TwoLevelPreconditioner {
  public:
@@ -44,7 +58,7 @@ class TwoLevelPreconditioner {
   ~TwoLevelPreconditioner();
   /// A: the DG matrix in block form (block = cell). Throws NumericalError if A_c is singular.
   /// `order`: elimination order of the block ILU smoother (empty = natural).
-  void compute(const BlockSparseMatrix& A, const VertexCoarseSpace& coarse, bool post_smooth = true,
+  void compute(const BlockSparseMatrix& A, const CoarseSpace& coarse, bool post_smooth = true,
                const std::vector<int>& order = {});
   void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
 

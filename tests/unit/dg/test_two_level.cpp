@@ -9,6 +9,8 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <string>
 
 #include "case/case.hpp"
@@ -17,6 +19,7 @@
 #include "dg/linear_solver.hpp"
 #include "dg/solve.hpp"
 #include "dg/two_level.hpp"
+#include "fem/basis.hpp"
 #include "io/msh.hpp"
 
 using namespace quadapt;
@@ -32,9 +35,9 @@ struct TwoLevelRun {
 struct TwoLevelSystem {
   BlockSparseMatrix B;
   Eigen::VectorXd b;
-  VertexCoarseSpace vc;
+  CoarseSpace vc;
   LinearSolverOptions o;
-  TwoLevelSystem(const DGDiscretization& dg, const Mesh& m, const Case& cs, int p) : vc(make_vertex_coarse_space(m, p)) {
+  TwoLevelSystem(const DGDiscretization& dg, const Mesh& m, const Case& cs, int p) : vc(make_coarse_space(m, p, coarse_degree(p, 0))) {
     dg.assemble(B, b);
     o.kind = LinearSolverKind::GmresTwoLevel;
     o.coarse = &vc;
@@ -70,6 +73,79 @@ TEST_CASE("two-level: the reversed post-sweep keeps GMRES fast on an adapted str
   CAPTURE(r.info.iterations);
   CHECK(r.error_vs_direct < 1e-9);
   CHECK(r.info.iterations <= 22);  // 15 measured; 38 with the forward sweep twice
+}
+
+// q = 2 by default: on stretched cells the continuous Q_1 space lacks the modes that are smooth
+// across a stack of thin cells and of high degree along them (two_level.hpp).
+TEST_CASE("two-level: the Q_2 coarse space keeps GMRES short at p = 3 on the stretched mesh") {
+  const std::string src = QUADAPT_SOURCE_DIR;
+  const Mesh m = read_msh(src + "/tests/fixtures/dg/boundary-layer-p1-step3.msh");
+  const Case cs = load_case(src + "/examples/cases/boundary-layer.json");
+  const DGDiscretization dg(m, cs, 3);
+  int its[2] = {0, 0};
+  for (int q : {1, 2}) {
+    TwoLevelSystem sys(dg, m, cs, 3);
+    sys.vc = make_coarse_space(m, 3, q);
+    LinearSolveInfo info;
+    solve_linear(sys.B, sys.b, sys.o, &info);
+    CHECK(info.coarse_degree == q);
+    its[q - 1] = info.iterations;
+  }
+  CAPTURE(its[0]);
+  CAPTURE(its[1]);
+  CHECK(coarse_degree(3, 0) == 2);
+  CHECK(its[1] <= 34);            // 26 measured
+  CHECK(its[0] >= its[1] + 15);   // Q_1: 49
+}
+
+// Continuity is what makes the coarse space immune to the penalty: the prolonged DG values of
+// any coarse vector agree wherever two cells' nodes coincide, whatever the cells' orientations
+// (the fixture's cells meet their neighbours' edges in both directions).
+TEST_CASE("two-level: the Q_q coarse space is continuous and counts its points") {
+  const std::string src = QUADAPT_SOURCE_DIR;
+  const Mesh grid = make_structured_quads(3, 2);  // 12 nodes, 17 edges, 6 cells
+  CHECK(make_coarse_space(grid, 3, 1).num_coarse == 12);
+  CHECK(make_coarse_space(grid, 3, 2).num_coarse == 12 + 17 + 6);
+  CHECK(make_coarse_space(grid, 3, 3).num_coarse == 12 + 2 * 17 + 4 * 6);
+  CHECK_THROWS_AS(make_coarse_space(grid, 2, 3), Error);
+  CHECK(coarse_degree(1, 0) == 1);
+  CHECK(coarse_degree(5, 0) == 2);
+  CHECK(coarse_degree(2, 4) == 2);
+  const Mesh m = read_msh(src + "/tests/fixtures/dg/boundary-layer-p1-step3.msh");
+  for (int p : {2, 4})
+    for (int q = 1; q <= std::min(p, 3); ++q) {
+      CAPTURE(p);
+      CAPTURE(q);
+      const CoarseSpace cs = make_coarse_space(m, p, q);
+      CHECK((cs.shape.rowwise().sum().array() - 1).abs().maxCoeff() < 1e-13);  // partition of unity
+      Eigen::VectorXd x(cs.num_coarse);
+      for (int g = 0; g < cs.num_coarse; ++g) x[g] = std::sin(1.7 * g + 0.3);
+      const LagrangeBasis1D b(p);
+      std::map<std::pair<long long, long long>, double> at;  // node position (1e-9 grid) -> value
+      double worst = 0;
+      int shared = 0;
+      for (int c = 0; c < m.num_cells(); ++c) {
+        Eigen::VectorXd xc(cs.m);
+        for (int k = 0; k < cs.m; ++k) xc[k] = x[cs.dof[static_cast<size_t>(c) * cs.m + k]];
+        const Eigen::VectorXd u = cs.shape * xc;
+        for (int j = 0; j <= p; ++j)
+          for (int i = 0; i <= p; ++i) {
+            const double xi = b.nodes()[i], eta = b.nodes()[j];
+            const double w[4] = {(1 - xi) * (1 - eta) / 4, (1 + xi) * (1 - eta) / 4, (1 + xi) * (1 + eta) / 4,
+                                 (1 - xi) * (1 + eta) / 4};
+            Eigen::Vector2d pos = Eigen::Vector2d::Zero();
+            for (int k = 0; k < 4; ++k) pos += w[k] * m.nodes[m.cells[c].v[k]];
+            const auto key = std::make_pair(std::llround(pos.x() * 1e9), std::llround(pos.y() * 1e9));
+            const auto [it, fresh] = at.emplace(key, u[i + (p + 1) * j]);
+            if (!fresh) {
+              ++shared;
+              worst = std::max(worst, std::abs(it->second - u[i + (p + 1) * j]));
+            }
+          }
+      }
+      CHECK(shared > 0);
+      CHECK(worst < 1e-12);
+    }
 }
 
 TEST_CASE("two-level: structured grid, the count is the smoother-independent 10-20") {
@@ -116,7 +192,7 @@ TEST_CASE("two-level: a singular pivot block is a NumericalError from either fac
     if (a >= 0) std::fill_n(B.block(a), nb2, 0.0);
     if (c >= 0) std::fill_n(B.block(c), nb2, 0.0);
   }
-  VertexCoarseSpace vc = make_vertex_coarse_space(m, 1);
+  CoarseSpace vc = make_coarse_space(m, 1, coarse_degree(1, 0));
   const int saved = omp_get_max_threads();
   for (int threads : {1, 2}) {
     omp_set_num_threads(threads);
