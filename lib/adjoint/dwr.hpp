@@ -120,7 +120,7 @@ DWRResult compute_dwr(const Mesh& mesh, const Case& cs, const Eigen::VectorXd& U
 
 /// Solves the adjoint system A^T psi = g for the fine DG matrix A (blocks = cells of `mesh`,
 /// degree pf) with opt.solver, the Flow/Mesh elimination order for advection c and, for
-/// gmres-2level, the mesh's continuous bilinear coarse space. Falls back to UMFPACK as
+/// gmres-2level, the mesh's continuous Q_q coarse space (q = opt.solver.coarse_degree, 0 = min(pf, 2)). Falls back to UMFPACK as
 /// opt.fallback_direct says; throws NumericalError otherwise.
 /// A is taken by value (pass it with std::move to release it once it has been transposed).
 /// `topo`: the mesh's faces, if the caller has them (for the pure-advection order).

@@ -9,7 +9,8 @@
 //   gmres-bjacobi  restarted GMRES with block Jacobi (cell blocks)
 //   bicgstab-ilut  Eigen's BiCGSTAB with IncompleteLUT (scalar threshold ILU)
 //   gmres-2level   restarted GMRES with the two-level preconditioner of dg/two_level.hpp (block
-//                  ILU(0) smoother + continuous bilinear coarse space; needs opt.coarse)
+//                  ILU(0) smoother + continuous Q_q coarse space, q = min(p, 2) by default;
+//                  needs opt.coarse)
 //   auto           the measured default (docs/bench-dgsolve.md): gmres-2level when the problem
 //                  has diffusion and a coarse space is given, else gmres-bilu0 (with the block
 //                  order, e.g. downwind for advection); if that does not converge within

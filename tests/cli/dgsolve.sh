@@ -49,6 +49,24 @@ dgsolve -q "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --threads 1 -o "$T/t1.msh"
 dgsolve -q "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --threads 2 -o "$T/t2.msh"
 cmp -s "$T/t1.msh" "$T/t2.msh" || fail "output depends on the thread count"
 
+# --- the coarse degree: auto = min(p, 2), reported; any q gives the same numbers; out of range refused
+dgsolve -q "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --coarse-degree 1 -o "$T/q1.msh"
+dgsolve -q "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --coarse-degree 5 -o "$T/q5.msh"
+python3 - "$T/t1.json" "$T/q1.json" "$T/q5.json" <<'EOF'
+import json, sys
+a, b, c = (json.load(open(f)) for f in sys.argv[1:4])
+assert (a["solver_coarse_degree"], b["solver_coarse_degree"], c["solver_coarse_degree"]) == (2, 1, 3), \
+    (a["solver_coarse_degree"], b["solver_coarse_degree"], c["solver_coarse_degree"])
+assert a["options"]["coarse_degree"] == 0 and b["options"]["coarse_degree"] == 1
+for r in (b, c):
+    assert abs(a["l2_error"] - r["l2_error"]) < 1e-8 * a["l2_error"], (a["l2_error"], r["l2_error"])
+EOF
+if dgsolve -q "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --coarse-degree 9 -o "$T/q9.msh" 2>"$T/err"; then
+  fail "--coarse-degree 9 accepted"
+fi
+grep -q "coarse-degree" "$T/err" || fail "--coarse-degree 9: message does not name the flag: $(cat "$T/err")"
+[ ! -e "$T/q9.msh" ] || fail "--coarse-degree 9 wrote an output"
+
 # --- an explicitly chosen iterative solver gives the same numbers
 dgsolve -q "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --solver gmres-bilu0 -o "$T/it.msh"
 python3 - "$T/t1.json" "$T/it.json" <<'EOF'
