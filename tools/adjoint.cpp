@@ -9,6 +9,7 @@
 #include "adjoint/dwr.hpp"
 #include "case/case.hpp"
 #include "case/solved_case.hpp"
+#include "cli/solver_options.hpp"
 #include "cli/tool.hpp"
 #include "dg/degree.hpp"
 #include "core/format.hpp"
@@ -48,12 +49,7 @@ int main(int argc, char** argv) {
                  "umfpack, sparselu")
       ->capture_default_str();
   app.add_option("--rtol", opt.solver.rtol, "Relative residual tolerance of iterative solvers")->capture_default_str();
-  app.add_option("--coarse-degree", opt.solver.coarse_degree,
-                 "gmres-2level's coarse space: continuous Q_q on the mesh, q = this (0 = auto: min(the adjoint degree P+1, 2); at most the adjoint degree P+1). "
-                 "q = 2 keeps GMRES at ~15-30 iterations on the stretched cells of boundary layers, where q = 1 needs 40-100 "
-                 "(docs/bench-dgsolve.md)")
-      ->check(CLI::Range(0, 8))
-      ->capture_default_str();
+  add_coarse_degree_option(app, opt.solver.coarse_degree, "the adjoint degree P+1");
   app.add_option("--max-iterations", opt.solver.max_iterations, "Iteration limit of iterative solvers")
       ->capture_default_str();
   app.add_flag("--no-fallback", no_fallback,

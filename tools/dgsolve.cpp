@@ -6,6 +6,7 @@
 #include "case/boundary_conditions.hpp"
 #include "case/case.hpp"
 #include "case/solved_case.hpp"
+#include "cli/solver_options.hpp"
 #include "cli/tool.hpp"
 #include "dg/degree.hpp"
 #include "core/format.hpp"
@@ -50,12 +51,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--rtol", opt.solver.rtol, "Relative residual tolerance of iterative solvers")
       ->capture_default_str();
-  app.add_option("--coarse-degree", opt.solver.coarse_degree,
-                 "gmres-2level's coarse space: continuous Q_q on the mesh, q = this (0 = auto: min(P, 2); at most P). "
-                 "q = 2 keeps GMRES at ~15-30 iterations on the stretched cells of boundary layers, where q = 1 needs 40-100 "
-                 "(docs/bench-dgsolve.md)")
-      ->check(CLI::Range(0, 8))
-      ->capture_default_str();
+  add_coarse_degree_option(app, opt.solver.coarse_degree, "P");
   app.add_option("--penalty", opt.dg.penalty_factor, "SIPG penalty factor (sigma = factor p(p+1) n^T D n / h)")
       ->capture_default_str();
 
