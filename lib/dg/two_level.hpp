@@ -11,7 +11,7 @@
 // edge (shared by the edge's two cells) and (q - 1)^2 inside each cell. Prolongation P: in cell K
 // the DG nodal values are the degree-q interpolant of the cell's coarse values, P_K(a, k) =
 // l^q_kx(x_i) l^q_ky(x_j) at DG node a = (i, j). Coarse matrix A_c = P^T A P (Galerkin),
-// factorised by UMFPACK (no iterative refinement: a preconditioner does not need it).
+// factorised by UMFPACK (one step of iterative refinement, not its default two: two_level.cpp).
 // Why q = min(p, 2) by default (measured, docs/bench-dgsolve.md "Stretched adapted meshes"): on
 // the boundary-layer loops' cells (up to ~100:1) the smooth-across, high-degree-along-the-wall
 // modes of a stack of thin cells have little energy; Q_1 does not contain them and the cell-block
