@@ -8,7 +8,7 @@ usage: stretched.py --bin DIR [--base DIR] [--reps N] [--threads T] [--work DIR]
 Meshes: the L_p-CVT feature loops of examples/cases/boundary-layer.json at p = 1, 2, 3 (the
 study matrix's settings, scripts/loop/run-loop.sh with --bin's tools; made once into --work and
 reused), every step from 3 on. On each mesh, at the loop's p: dgsolve of --bin with
---coarse-degree 1, 2 (the default) and 3 (p = 3 only), and --base's dgsolve (its default), in
+--coarse-degree 1 to min(p, 3) (the default is min(p, 2)), and --base's dgsolve (its default), in
 turn (A B C ... A B C ...), --reps times (default 3), one thread unless --threads. Reported:
 iterations, the report's "solve" phase (assembly of the preconditioner included) and the whole
 process's wall time, medians. Prints a Markdown table and writes the figures to --out.

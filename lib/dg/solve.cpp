@@ -132,8 +132,8 @@ DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& o
   t0 = std::chrono::steady_clock::now();
   LinearSolverOptions so = opt.solver;
   so.block_size = dg.dofs_per_cell();
-  CoarseSpace coarse;
-  if (!cs.advection_only()) {
+  CoarseSpace coarse;  // only where gmres-2level can run
+  if (!cs.advection_only() && (so.kind == LinearSolverKind::Auto || so.kind == LinearSolverKind::GmresTwoLevel)) {
     coarse = make_coarse_space(mesh, opt.p, coarse_degree(opt.p, so.coarse_degree));
     so.coarse = &coarse;
   }

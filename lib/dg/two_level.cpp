@@ -84,61 +84,9 @@ CoarseSpace make_coarse_space(const Mesh& mesh, int p, int degree) {
   return cs;
 }
 
-struct TwoLevelPreconditioner::Impl {
-  const BlockSparseMatrix* A = nullptr;
-  CoarseSpace coarse;
-  BlockILU0 ilu;       ///< pre-smoother: elimination in the given order
-  BlockILU0 ilu_back;  ///< post-smoother: the same order reversed
-  Eigen::SparseMatrix<double> Ac;  // UmfPackLU keeps a reference to its matrix
-  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
-  bool post = true;
-};
-
-TwoLevelPreconditioner::TwoLevelPreconditioner() : impl_(std::make_unique<Impl>()) {}
-TwoLevelPreconditioner::~TwoLevelPreconditioner() = default;
-
-void TwoLevelPreconditioner::compute(const BlockSparseMatrix& A, const CoarseSpace& coarse, bool post_smooth,
-                                     const std::vector<int>& order) {
-  Impl& I = *impl_;
+Eigen::SparseMatrix<double> galerkin_coarse_matrix(const BlockSparseMatrix& A, const CoarseSpace& coarse) {
   if (A.block_size() != coarse.nb || static_cast<size_t>(A.block_rows()) * coarse.m != coarse.dof.size())
     throw NumericalError("two-level preconditioner: coarse space does not match the matrix blocks");
-  I.A = &A;
-  I.coarse = coarse;
-  I.post = post_smooth;
-  std::vector<int> back;
-  if (post_smooth) {
-    back.assign(order.rbegin(), order.rend());
-    if (back.empty()) {
-      back.resize(static_cast<size_t>(A.block_rows()));
-      for (size_t i = 0; i < back.size(); ++i) back[i] = static_cast<int>(back.size() - 1 - i);
-    }
-  }
-  // The two factorisations are sequential and independent of each other: with two threads each
-  // gets one (the same factors bit for bit as one after the other). An exception inside an
-  // OpenMP region must not leave it: each section keeps its own and the first is rethrown.
-  std::exception_ptr err[2];
-#pragma omp parallel sections num_threads(2) if (post_smooth && omp_get_max_threads() > 1)
-  {
-#pragma omp section
-    {
-      try {
-        I.ilu.compute(A, order);
-      } catch (...) {
-        err[0] = std::current_exception();
-      }
-    }
-#pragma omp section
-    {
-      try {
-        if (post_smooth) I.ilu_back.compute(A, back);
-      } catch (...) {
-        err[1] = std::current_exception();
-      }
-    }
-  }
-  for (const auto& e : err)
-    if (e) std::rethrow_exception(e);
-
   // A_c = P^T A P, block by block: S^T A_IJ S (m x m) scattered to the coarse values of I and J,
   // straight into compressed columns. Its pattern is that of the products' nonzero entries: a DG
   // face block couples only the values on its face to the rest (GLL nodal bases vanish exactly on
@@ -202,18 +150,79 @@ void TwoLevelPreconditioner::compute(const BlockSparseMatrix& A, const CoarseSpa
       const int* lo = rows.data() + col_start[gj[b]];
       const int* hi = rows.data() + col_start[gj[b] + 1];
       for (int a = 0; a < m; ++a)
-        if (L(a, b) != 0) vals[std::lower_bound(lo, hi, gi[a]) - rows.data()] += L(a, b);
+        if (L(a, b) != 0) {
+          const int* at = std::lower_bound(lo, hi, gi[a]);
+          if (at == hi || *at != gi[a]) throw NumericalError("two-level preconditioner: coarse pattern mismatch");
+          vals[at - rows.data()] += L(a, b);
+        }
     }
   });
-  Eigen::SparseMatrix<double>& Ac = I.Ac;
-  Ac = Eigen::Map<const Eigen::SparseMatrix<double>>(nc, nc, static_cast<Eigen::Index>(vals.size()), col_start.data(),
+  return Eigen::Map<const Eigen::SparseMatrix<double>>(nc, nc, static_cast<Eigen::Index>(vals.size()), col_start.data(),
                                                      rows.data(), vals.data());
+}
+
+struct TwoLevelPreconditioner::Impl {
+  const BlockSparseMatrix* A = nullptr;
+  CoarseSpace coarse;
+  BlockILU0 ilu;       ///< pre-smoother: elimination in the given order
+  BlockILU0 ilu_back;  ///< post-smoother: the same order reversed
+  Eigen::SparseMatrix<double> Ac;  // UmfPackLU keeps a reference to its matrix
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
+  bool post = true;
+};
+
+TwoLevelPreconditioner::TwoLevelPreconditioner() : impl_(std::make_unique<Impl>()) {}
+TwoLevelPreconditioner::~TwoLevelPreconditioner() = default;
+
+void TwoLevelPreconditioner::compute(const BlockSparseMatrix& A, const CoarseSpace& coarse, bool post_smooth,
+                                     const std::vector<int>& order) {
+  Impl& I = *impl_;
+  if (A.block_size() != coarse.nb || static_cast<size_t>(A.block_rows()) * coarse.m != coarse.dof.size())
+    throw NumericalError("two-level preconditioner: coarse space does not match the matrix blocks");
+  I.A = &A;
+  I.coarse = coarse;
+  I.post = post_smooth;
+  std::vector<int> back;
+  if (post_smooth) {
+    back.assign(order.rbegin(), order.rend());
+    if (back.empty()) {
+      back.resize(static_cast<size_t>(A.block_rows()));
+      for (size_t i = 0; i < back.size(); ++i) back[i] = static_cast<int>(back.size() - 1 - i);
+    }
+  }
+  // The two factorisations are sequential and independent of each other: with two threads each
+  // gets one (the same factors bit for bit as one after the other). An exception inside an
+  // OpenMP region must not leave it: each section keeps its own and the first is rethrown.
+  std::exception_ptr err[2];
+#pragma omp parallel sections num_threads(2) if (post_smooth && omp_get_max_threads() > 1)
+  {
+#pragma omp section
+    {
+      try {
+        I.ilu.compute(A, order);
+      } catch (...) {
+        err[0] = std::current_exception();
+      }
+    }
+#pragma omp section
+    {
+      try {
+        if (post_smooth) I.ilu_back.compute(A, back);
+      } catch (...) {
+        err[1] = std::current_exception();
+      }
+    }
+  }
+  for (const auto& e : err)
+    if (e) std::rethrow_exception(e);
+
+  I.Ac = galerkin_coarse_matrix(A, coarse);
   // One step of iterative refinement (UMFPACK's default is up to 2; each costs a coarse solve and
   // a product): without any, the same Q_2 system factorised with OpenBLAS instead of the
   // reference BLAS gave a coarse correction poor enough to double GMRES's iterations (56 against
   // 28 at p = 3, 116k DOFs); one step gives 28 with either.
   I.lu.umfpackControl()(UMFPACK_IRSTEP) = 1;
-  I.lu.compute(Ac);
+  I.lu.compute(I.Ac);
   if (I.lu.info() != Eigen::Success) throw NumericalError("two-level preconditioner: singular coarse matrix");
 }
 

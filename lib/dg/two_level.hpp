@@ -11,12 +11,14 @@
 // edge (shared by the edge's two cells) and (q - 1)^2 inside each cell. Prolongation P: in cell K
 // the DG nodal values are the degree-q interpolant of the cell's coarse values, P_K(a, k) =
 // l^q_kx(x_i) l^q_ky(x_j) at DG node a = (i, j). Coarse matrix A_c = P^T A P (Galerkin),
-// factorised by UMFPACK (one step of iterative refinement, not its default two: two_level.cpp).
+// factorised by UMFPACK (one step of iterative refinement, not its default of up to two:
+// two_level.cpp).
 // Why q = min(p, 2) by default (measured, docs/bench-dgsolve.md "Stretched adapted meshes"): on
 // the boundary-layer loops' cells (up to ~100:1) the smooth-across, high-degree-along-the-wall
 // modes of a stack of thin cells have little energy; Q_1 does not contain them and the cell-block
-// smoother cannot reach them, so GMRES needed 44 (p = 2) to 96 (p = 3) iterations; with Q_2
-// 14-30, with Q_3 at p = 3 13-15, but Q_3's factorisation costs more than its iterations save.
+// smoother cannot reach them, so GMRES needed 40-44 (p = 2) and 56-67 (p = 3) iterations; with
+// Q_2 14-15 and 28-30, with Q_3 at p = 3 12-14, but Q_3's factorisation costs more than its
+// iterations save at 116k DOFs.
 // One application (multiplicative):  z = S r;  z += P A_c^-1 P^T (r - A z);  z += S' (r - A z),
 // S = the block ILU(0) solve eliminating the cells in the given order, S' = the block ILU(0)
 // solve in the reversed order (a forward and a backward sweep, as a symmetric Gauss-Seidel
@@ -49,8 +51,14 @@ struct CoarseSpace {
 /// The coarse degree used when `requested` is 0 (auto): min(p, 2); else min(requested, p).
 int coarse_degree(int p, int requested);
 /// Continuous Q_degree on the mesh's quads for DG degree p (1 <= degree <= p). Throws InputError
-/// when a cell is not a quad.
+/// when a cell is not a quad. An edge's inner points are keyed by its two end nodes (two distinct
+/// curved edges between the same two nodes would share them: a poorer preconditioner, not a
+/// wrong solution).
 CoarseSpace make_coarse_space(const Mesh& mesh, int p, int degree);
+/// The Galerkin coarse matrix A_c = P^T A P (#coarse x #coarse, compressed columns) on the pattern
+/// of its nonzero block products; a coarse value in no cell gets a 1 on the diagonal. The same
+/// bits with any thread count. Throws NumericalError when the space does not match A's blocks.
+Eigen::SparseMatrix<double> galerkin_coarse_matrix(const BlockSparseMatrix& A, const CoarseSpace& coarse);
 
 class TwoLevelPreconditioner {
  public:

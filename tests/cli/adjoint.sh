@@ -75,6 +75,18 @@ for k in ["functional_error_estimate", "sum_eta"]:
 EOF
 done
 
+# --- the coarse degree (gmres-2level at the adjoint degree p + 1 = 3): auto = 2, reported; q = 1
+# and q = 3 give the same estimate; the report says which ran
+adjoint -q "$T/sol2.msh" -c "$T/smooth.json" -o "$T/dwr2-q1.msh" --coarse-degree 1
+adjoint -q "$T/sol2.msh" -c "$T/smooth.json" -o "$T/dwr2-q3.msh" --coarse-degree 3
+python3 - "$T/dwr2.json" "$T/dwr2-q1.json" "$T/dwr2-q3.json" <<'EOF' || fail "--coarse-degree"
+import json, sys
+a, b, c = (json.load(open(f)) for f in sys.argv[1:4])
+assert [r["solver_coarse_degree"] for r in (a, b, c)] == [2, 1, 3], [r["solver_coarse_degree"] for r in (a, b, c)]
+for r in (b, c):
+    assert abs(a["functional_error_estimate"] - r["functional_error_estimate"]) <= 1e-8 * abs(a["functional_error_estimate"])
+EOF
+
 # --- non-conforming: fixed-fraction refinement by the DWR itself (the goal-oriented baseline)
 refine -q "$T/dwr2.msh" --by dwr --fraction 0.3 -o "$T/nc.msh"
 cells=$(python3 -c "import json; print(json.load(open('$T/nc.json'))['cells'])")
@@ -107,6 +119,7 @@ expect_fail "inlet.json.*'inlet'" "$T/sol1.msh" -c "$T/inlet.json"
 expect_fail "no DG solution field 'v'" "$T/sol1.msh" -c "$T/smooth.json" --field v
 expect_fail "unknown linear solver" "$T/sol1.msh" -c "$T/smooth.json" --solver magic
 expect_fail "ordering" "$T/sol1.msh" -c "$T/smooth.json" --ordering sideways
+expect_fail "coarse-degree" "$T/sol1.msh" -c "$T/smooth.json" --coarse-degree -1
 # a case whose PDE is not the one the solution was solved with ($SolvedCase, written by dgsolve):
 # refused, naming what differs (before: exit 0 and a meaningless estimate); the same PDE written
 # otherwise, or with the functional added after the solve, is accepted

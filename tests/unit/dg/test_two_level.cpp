@@ -148,6 +148,33 @@ TEST_CASE("two-level: the Q_q coarse space is continuous and counts its points")
     }
 }
 
+// The coarse matrix assembled on its products' pattern is the dense P^T A P (P: the prolongation
+// of make_coarse_space), entry for entry; a scatter into the wrong slot would only slow GMRES down.
+TEST_CASE("two-level: the Galerkin coarse matrix is P^T A P") {
+  const std::string src = QUADAPT_SOURCE_DIR;
+  Mesh m = make_structured_quads(4, 3);
+  for (Vec2& x : m.nodes) x += Vec2(0.07 * std::sin(7 * x.y() + 1), 0.05 * std::cos(5 * x.x()));  // not affine
+  const Case cs = load_case(src + "/examples/cases/sshock.json");
+  for (int p : {1, 3})
+    for (int q = 1; q <= std::min(p, 2); ++q) {
+      CAPTURE(p);
+      CAPTURE(q);
+      const DGDiscretization dg(m, cs, p);
+      BlockSparseMatrix B;
+      Eigen::VectorXd b;
+      dg.assemble(B, b);
+      const CoarseSpace c = make_coarse_space(m, p, q);
+      Eigen::MatrixXd P = Eigen::MatrixXd::Zero(dg.num_dofs(), c.num_coarse);
+      for (int k = 0; k < m.num_cells(); ++k)
+        for (int j = 0; j < c.m; ++j) P.block(k * c.nb, c.dof[k * c.m + j], c.nb, 1) += c.shape.col(j);
+      const Eigen::MatrixXd A = Eigen::MatrixXd(B.to_csc());
+      const Eigen::MatrixXd ref = P.transpose() * A * P;
+      const Eigen::MatrixXd Ac = Eigen::MatrixXd(galerkin_coarse_matrix(B, c));
+      CHECK((Ac - ref).cwiseAbs().maxCoeff() <= 1e-12 * ref.cwiseAbs().maxCoeff());
+      CHECK(Ac.rows() == (q == 1 ? 20 : 20 + 31 + 12));
+    }
+}
+
 TEST_CASE("two-level: structured grid, the count is the smoother-independent 10-20") {
   const Case cs = load_case(std::string(QUADAPT_SOURCE_DIR) + "/examples/cases/smooth.json");
   const TwoLevelRun r = run_two_level(make_structured_quads(24, 24), cs, 2);
