@@ -143,6 +143,8 @@ int main(int argc, char** argv) {
              " iterations); estimate " + sci(r.estimate) + ", true error " +
              sci(r.functional_error));
     if (const std::string note = fallback_note(r.solve); !note.empty()) tool.warn(note);
+    if (const std::string note = coarse_degree_note(opt.solver.coarse_degree, p + 1, r.solve); !note.empty())
+      tool.warn(note);
 
     {
       auto ph = tool.phase("write");

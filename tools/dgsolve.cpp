@@ -90,6 +90,8 @@ int main(int argc, char** argv) {
     tool.log("solved with " + r.solve.solver + " in " + sci(r.t_solve) + " s; L2 error " +
              sci(r.l2_error));
     if (const std::string note = fallback_note(r.solve); !note.empty()) tool.warn(note);
+    if (const std::string note = coarse_degree_note(opt.solver.coarse_degree, opt.p, r.solve); !note.empty())
+      tool.warn(note);
 
     {
       auto ph = tool.phase("write");

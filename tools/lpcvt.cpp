@@ -88,8 +88,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"lattice", "multilevel", "density", "uniform"}));
   app.add_option("--coarse-points", opt.coarse_points, "Multilevel: interior points of the coarsest level, at least")
       ->capture_default_str()->check(PositiveValue);
-  app.add_option("--complexity", job.complexity, "Target DOFs: the frame rescaled to complexity/(degree+1)^2 cells")
-      ->check(PositiveValue);
+  app.add_option("--complexity", job.complexity, "Target DOFs: the frame rescaled to complexity/(degree+1)^2 cells");
   app.add_option("--degree", job.degree, "DG degree P for --complexity (cells = complexity/(P+1)^2)")->check(CLI::Range(kMinDegree, kMaxDegree));
   app.add_option("--smooth", job.smooth, "Log-Euclidean smoothing of the metric M^T M across background cells: passes (0 = none; frames' default 4, --analytic's 0)")
       ->capture_default_str()->check(CLI::Range(0, 1000));
@@ -141,6 +140,9 @@ int main(int argc, char** argv) {
 
   return tool.run(argc, argv, [&] {
     if (in.empty() == analytic.empty()) throw InputError("", "give either FRAME.msh or --analytic saddle");
+    // refused before any work (run.cpp checks it again for the library's callers)
+    if ((app.count("--complexity") > 0) != (app.count("--degree") > 0))
+      throw InputError("", "--complexity and --degree go together: the frame is rescaled to complexity/(P+1)^2 cells");
     if (!in.empty()) tool.input(in);
     if (!geometry.empty()) tool.input(geometry);
     tool.output_mesh(out);
@@ -191,10 +193,13 @@ int main(int argc, char** argv) {
     }
     {
       auto ph = tool.phase("write");
+      // all or nothing: a side output that fails leaves the mesh (and the others) as they were
+      OutputBatch batch;
       if (!voronoi_out.empty())
-        atomic_write(voronoi_out, [&](std::ostream& os) { os << voronoi_report(bg, r, tool.report()).dump() << "\n"; });
-      write_msh(r.mesh, out);
-      if (!frame_out.empty()) write_frame(meshed_frame(bg), frame_out);
+        batch.add(voronoi_out, [&](std::ostream& os) { os << voronoi_report(bg, r, tool.report()).dump() << "\n"; });
+      write_msh(r.mesh, out, batch);
+      if (!frame_out.empty()) write_frame(meshed_frame(bg), frame_out, batch);
+      batch.commit();
     }
     // a frame that cannot be met on this domain (an element longer than the domain is wide, in
     // some direction) gives a count far from the frame's: say so, the report alone is easy to miss

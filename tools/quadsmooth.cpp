@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/frame_coverage.hpp"
 #include "cli/parse_errors.hpp"
 #include "cli/tool.hpp"
 #include "core/format.hpp"
@@ -143,15 +144,7 @@ int main(int argc, char** argv) {
     if (!frame_path.empty()) {
       // a frame that does not cover the mesh (another run's, another domain's) is sampled at its
       // nearest cell there: said, not silent (a reviewer's L-shape frame on a [0,2]x[0,1] mesh)
-      int outside = 0;
-      frame.at_cells(m, &outside);
-      tool.report()["cells_outside_frame"] = outside;
-      // (a few boundary cells of a curved domain's mesh may lie just outside its polygonal frame:
-      // more than 1 % is another domain's frame)
-      if (outside > 0.01 * m.num_cells())
-        tool.warn(std::to_string(outside) + " of " + std::to_string(m.num_cells()) + " cells of " + in +
-                 " have their centroid outside " + frame_path +
-                 "'s background (the nearest frame cell is used there): is it the frame of this mesh?");
+      sample_frame_checked(tool, frame, m, in, frame_path);
     }
     if (method == "shape" && fit_opt.mode != lpcvt::FitFrame::Raw) {
       auto ph = tool.phase("fit_frame");

@@ -2,6 +2,7 @@
 // each quad split into 4 and each remaining triangle into 3. See docs/recombine.md.
 #include <string>
 
+#include "cli/frame_coverage.hpp"
 #include "cli/parse_errors.hpp"
 #include "cli/tool.hpp"
 #include "core/format.hpp"
@@ -92,7 +93,7 @@ int main(int argc, char** argv) {
       if (matching == "metric") {
         if (!frame_path.empty()) {
           tool.input(frame_path);
-          opt.with_frame(read_frame(frame_path).at_cells(tri));
+          opt.with_frame(sample_frame_checked(tool, read_frame(frame_path), tri, in, frame_path));
         } else if (tri.cell_field("Vinv")) {
           opt.with_frame(frame_from_mesh(tri, in).oriented());
         } else {

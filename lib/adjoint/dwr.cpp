@@ -89,9 +89,8 @@ Eigen::VectorXd solve_adjoint(BlockSparseMatrix A, const Eigen::VectorXd& g, con
   const BlockSparseMatrix& At = A;
   o.block_size = nb;
   o.pure_advection = pure_advection;
-  // the coarse space only where gmres-2level can run (auto with diffusion, or asked for)
-  CoarseSpace coarse;
-  if (o.kind == LinearSolverKind::GmresTwoLevel || (o.kind == LinearSolverKind::Auto && !pure_advection)) {
+  CoarseSpace coarse;  // only where gmres-2level can run
+  if (needs_coarse_space(o.kind, pure_advection)) {
     coarse = make_coarse_space(mesh, pf, coarse_degree(pf, o.coarse_degree));
     o.coarse = &coarse;
   }

@@ -69,6 +69,10 @@ std::string parse_error_message(const CLI::App& app, int argc, char** argv, cons
                        : type.rfind("UINT", 0) == 0 ? "a non-negative whole number"
                        : type.rfind("FLOAT", 0) == 0 ? "a number"
                                                      : nullptr;
+    // a whole number too large for the option's type is not "not a whole number"
+    static const std::regex integer(R"(\s*[-+]?[0-9]+\s*)");
+    if (what && type.rfind("FLOAT", 0) != 0 && std::regex_match(m[2].str(), integer))
+      return m[1].str() + " " + m[2].str() + ": a whole number out of range";
     if (what) return m[1].str() + " " + m[2].str() + ": not " + what;
   }
   static const std::regex long_number(R"(-?[0-9]+\.?[0-9]*(?:[eE][-+]?[0-9]+)?)");

@@ -115,8 +115,10 @@ void Tool::output(const std::string& path) {
   // .msh name or a name without extension gets): refused before any work when that is an input,
   // like the output itself
   const std::string ext = lower_extension(path);
-  if (target.kind == OutputTarget::Kind::Regular && (ext == ".msh" || ext.empty()))
+  if (target.kind == OutputTarget::Kind::Regular && (ext == ".msh" || ext.empty())) {
     protect_output(path + ".opt");
+    resolve_output(path + ".opt");  // a directory, a link into a missing folder: refused now, not after the work
+  }
   outputs_.push_back(path);
   report_["outputs"].push_back(path);
   if (!report_decided_) {
@@ -152,9 +154,9 @@ void Tool::declare_report() {
   resolve_output(report_path_);
   use_stdio(report_path_, stdout_used_, "output");
   // named in a refusal: `dgsolve M -c X.json -o X.msh` would write its report X.json over the case
-  if (report_explicit_)
+  if (report_explicit_) {
     protect_output(report_path_, "the report (--report)", "give --report another path");
-  else {
+  } else {
     const std::string beside = "the report written beside the output " + (outputs_.empty() ? std::string() : outputs_.front());
     protect_output(report_path_, beside, "give --report another path, or -o another name");
     // a file of the user's that happens to have the report's name (`-o mm1.msh` beside a case
@@ -173,6 +175,13 @@ void Tool::declare_report() {
     if (std::find(std::begin(kNotReports), std::end(kNotReports), ext) != std::end(kNotReports))
       throw InputError(report_path_, "--report writes a JSON report, not a " + ext.substr(1) +
                                          " file: give it a .json name");
+    // nor a file of the user's given by mistake (`--report case.json` of a case not read this
+    // time): only an earlier report, or an empty file (mktemp's), is replaced
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(report_path_, ec) && std::filesystem::file_size(report_path_, ec) > 0 &&
+        !ec && !is_tool_report(report_path_))
+      throw InputError(report_path_, "exists and is not a quadapt report; --report would replace it: give "
+                                     "--report another path (or remove the file)");
   }
 }
 

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <memory>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -29,7 +30,7 @@ std::string temp_name(const fs::path& p) {
   return (p.parent_path() / (name + ext)).string();
 }
 
-void commit(const std::string& tmp, const std::string& path) {
+void commit_rename(const std::string& tmp, const std::string& path) {
   std::error_code ec;
   fs::rename(tmp, path, ec);
   if (ec) {
@@ -93,21 +94,67 @@ OutputTarget resolve_output(const std::string& path) {
   return {OutputTarget::Kind::Regular, p.string()};
 }
 
+struct OutputBatch::Item {
+  OutputTarget target;
+  std::unique_ptr<TempFile> tmp;  // regular targets: the written temporary
+  std::string text;               // special targets: the content, written at commit
+  bool binary = false;
+};
+
+OutputBatch::OutputBatch() = default;
+OutputBatch::~OutputBatch() = default;  // uncommitted temporaries are removed by their TempFile
+
+void OutputBatch::add(const std::string& path, const std::function<void(std::ostream&)>& writer, bool binary) {
+  if (committed_) throw NumericalError("OutputBatch::add after commit");
+  Item it;
+  it.target = resolve_output(path);
+  check_not_an_input(path);  // stat follows the links: the same file as target.path
+  it.binary = binary;
+  if (it.target.kind != OutputTarget::Kind::Regular) {
+    // run now like the others (the writer's captures need not outlive add), written at commit
+    std::ostringstream os(binary ? std::ios::out | std::ios::binary : std::ios::out);
+    writer(os);
+    it.text = std::move(os).str();
+  } else {
+    it.tmp = std::make_unique<TempFile>(temp_name(it.target.path));
+    std::ofstream out(it.tmp->path(), binary ? std::ios::binary : std::ios::out);
+    if (!out) throw ExternalError(path + ": cannot open for writing (" + std::strerror(errno) + ")");
+    errno = 0;
+    writer(out);
+    out.flush();
+    // the failed write(2)'s reason (No space left on device, File too large) when it set one
+    if (!out) throw ExternalError(path + ": write failed (" + (errno ? std::string(std::strerror(errno)) : "disk full?") + ")");
+  }
+  items_.push_back(std::move(it));
+}
+
+void OutputBatch::after_commit(std::function<void()> f) { after_.push_back(std::move(f)); }
+
+void OutputBatch::commit() {
+  if (committed_) return;
+  committed_ = true;
+  // devices and standard output first (their writes can fail: /dev/full), then the renames
+  for (Item& it : items_)
+    if (it.target.kind != OutputTarget::Kind::Regular)
+      write_special(it.target, [&](std::ostream& os) { os << it.text; }, it.binary);
+  for (Item& it : items_) {
+    if (it.target.kind != OutputTarget::Kind::Regular) continue;
+    commit_rename(it.tmp->path(), it.target.path);
+    it.tmp->release();
+  }
+  for (auto& f : after_) f();
+}
+
 void atomic_write(const std::string& path, const std::function<void(std::ostream&)>& writer,
                   bool binary) {
   const OutputTarget t = resolve_output(path);
-  check_not_an_input(path);  // stat follows the links: the same file as t.path
-  if (t.kind != OutputTarget::Kind::Regular) return write_special(t, writer, binary);
-  TempFile tmp(temp_name(t.path));
-  {
-    std::ofstream out(tmp.path(), binary ? std::ios::binary : std::ios::out);
-    if (!out) throw ExternalError(path + ": cannot open for writing (" + std::strerror(errno) + ")");
-    writer(out);
-    out.flush();
-    if (!out) throw ExternalError(path + ": write failed (disk full?)");
+  if (t.kind != OutputTarget::Kind::Regular) {  // streamed, not held in memory
+    check_not_an_input(path);
+    return write_special(t, writer, binary);
   }
-  commit(tmp.path(), t.path);
-  tmp.release();
+  OutputBatch b;
+  b.add(path, writer, binary);
+  b.commit();
 }
 
 void atomic_write_via_path(const std::string& path,
@@ -121,7 +168,7 @@ void atomic_write_via_path(const std::string& path,
   writer(tmp.path());
   if (!fs::exists(tmp.path())) throw ExternalError(path + ": the writer produced no file");
   if (t.kind == OutputTarget::Kind::Regular) {
-    commit(tmp.path(), t.path);
+    commit_rename(tmp.path(), t.path);
     tmp.release();
     return;
   }

@@ -15,6 +15,7 @@
 #include <functional>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "core/signal_cleanup.hpp"
 
@@ -38,6 +39,31 @@ OutputTarget resolve_output(const std::string& path);
 /// exception propagates. Throws ExternalError on I/O failure.
 void atomic_write(const std::string& path, const std::function<void(std::ostream&)>& writer,
                   bool binary = false);
+
+/// Several outputs replaced as one (a mesh and its Gmsh options file, a tool's main output and
+/// its side outputs): add() runs the writer at once, into a temporary beside a regular target
+/// (for standard output or a device into memory, so the writer's captures need not outlive add());
+/// commit() writes the devices and standard output (in the order added), then renames every
+/// temporary over its target. An exception before commit() — a failed write, a full disk, a
+/// refused path — removes every temporary and replaces no target, so a tool that exits 2 has
+/// written nothing. Each path is checked as atomic_write checks it (resolve_output, not an input).
+class OutputBatch {
+ public:
+  OutputBatch();
+  ~OutputBatch();
+  OutputBatch(const OutputBatch&) = delete;
+  OutputBatch& operator=(const OutputBatch&) = delete;
+  void add(const std::string& path, const std::function<void(std::ostream&)>& writer, bool binary = false);
+  /// Runs `f` after the renames (e.g. removing a stale side file); its exceptions propagate.
+  void after_commit(std::function<void()> f);
+  void commit();
+
+ private:
+  struct Item;
+  std::vector<Item> items_;
+  std::vector<std::function<void()>> after_;
+  bool committed_ = false;
+};
 
 /// Same, for writers that need a file name (e.g. an external program): `writer` receives a
 /// temporary path to create (same extension as `path`); it is renamed to the target afterwards,

@@ -135,6 +135,10 @@ void install_signal_cleanup() {
     for (int other : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&sa.sa_mask, other);  // one cleanup at a time
     ::sigaction(sig, &sa, nullptr);
   }
+  // A file-size limit (ulimit -f, batch systems): the write that passes it fails with EFBIG and
+  // the tool reports it (exit 2, the temporary removed) instead of dying by SIGXFSZ with a
+  // truncated temporary left behind.
+  ::signal(SIGXFSZ, SIG_IGN);
 }
 
 }  // namespace quadapt

@@ -1,6 +1,7 @@
 #pragma once
 // Cleaning up after SIGINT / SIGTERM / SIGHUP (docs/exit-codes.md: a temporary is removed on
-// failure, and an interrupt is a failure).
+// failure, and an interrupt is a failure). SIGXFSZ (a file-size limit) is ignored, so the write
+// that passes the limit fails with EFBIG and is reported like a full disk.
 //
 // Library code that creates something the process must not leave behind registers it for the
 // time it exists: a TempFile (core/atomic_file.hpp: atomic_write's temporary, meshplot's SVG for

@@ -58,6 +58,13 @@ struct LinearSolveInfo {
   int coarse_degree = 0;          ///< q of gmres-2level's coarse space when it was used, else 0
 };
 
+/// Whether a caller should build the coarse space (make_coarse_space) for these options: when
+/// gmres-2level is asked for, or auto may choose it (the problem has diffusion). The one rule of
+/// dgsolve and the adjoint: an explicit gmres-2level runs on pure advection too.
+inline bool needs_coarse_space(LinearSolverKind kind, bool pure_advection) {
+  return kind == LinearSolverKind::GmresTwoLevel || (kind == LinearSolverKind::Auto && !pure_advection);
+}
+
 /// When `info` is a fall-back to the direct solver: one sentence saying so, for a tool's
 /// "warning: " line (the adaptive loop keeps those in its table's `warnings`); else "". A
 /// fall-back costs the iterations spent first, so a system that falls back is solved faster by

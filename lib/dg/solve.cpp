@@ -133,7 +133,7 @@ DGSolveResult dg_solve(const Mesh& mesh, const Case& cs, const DGSolveOptions& o
   LinearSolverOptions so = opt.solver;
   so.block_size = dg.dofs_per_cell();
   CoarseSpace coarse;  // only where gmres-2level can run
-  if (!cs.advection_only() && (so.kind == LinearSolverKind::Auto || so.kind == LinearSolverKind::GmresTwoLevel)) {
+  if (needs_coarse_space(so.kind, cs.advection_only())) {
     coarse = make_coarse_space(mesh, opt.p, coarse_degree(opt.p, so.coarse_degree));
     so.coarse = &coarse;
   }

@@ -112,9 +112,22 @@ Frame frame_from_mesh(const Mesh& m, const std::string& path, std::optional<Size
     Mat2 M;
     M << (*f)(c, 0), (*f)(c, 1), (*f)(c, 3), (*f)(c, 4);
     if (!M.allFinite()) throw InputError(path, "non-finite frame \"Vinv\" in " + cell_label(m, c));
-    const double nrm = M.squaredNorm();
-    if (!(nrm > 0) || !(std::abs(M.determinant()) > 1e-12 * nrm))
-      throw InputError(path, "singular frame \"Vinv\" (det M = " + sci(M.determinant()) + ") in " + cell_label(m, c));
+    // |det M| > 1e-12 |M|_F^2: the stretch sigma_max / sigma_min below ~1e12 (a conditioning
+    // bound, so the message names the stretch; det M alone says nothing when M is large)
+    const double nrm = M.squaredNorm(), det = M.determinant();
+    if (!(nrm > 0) || !(std::abs(det) > 1e-12 * nrm)) {
+      std::string why;
+      if (!(nrm > 0)) {
+        why = "M = 0";
+      } else if (!std::isfinite(nrm) || !std::isfinite(det)) {
+        why = "entries too large: |M|^2 overflows";
+      } else {
+        const Eigen::Vector2d s = Eigen::JacobiSVD<Mat2>(M).singularValues();
+        why = "det M = " + sci(det) + ", stretch sigma_max/sigma_min = " + sci(s(0) / s(1)) +
+              ", more than the 1e12 a frame may have";
+      }
+      throw InputError(path, "singular frame \"Vinv\" (" + why + ") in " + cell_label(m, c));
+    }
     fr.M[c] = k * M;
   }
   fr.mesh = m;
@@ -157,6 +170,9 @@ Mesh frame_mesh(const Frame& f) {
 }
 
 void write_frame(const Frame& f, const std::string& path) { write_msh(frame_mesh(f), path); }
+void write_frame(const Frame& f, const std::string& path, OutputBatch& batch) {
+  write_msh(frame_mesh(f), path, batch);
+}
 
 FrameSampler::FrameSampler(const Frame& f) : oriented_(f.oriented()), locator_(f.mesh) {
   if (f.num_cells() == 0 || f.num_cells() != f.mesh.num_cells())

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "core/atomic_file.hpp"
 #include "mesh/locate.hpp"
 #include "mesh/mesh.hpp"
 
@@ -105,6 +106,8 @@ void set_frame_field(Mesh& m, const std::vector<Mat2>& M);
 Mesh frame_mesh(const Frame& f);
 /// Writes frame_mesh(f) atomically.
 void write_frame(const Frame& f, const std::string& path);
+/// The same staged in `batch` (io/msh.hpp's write_msh).
+void write_frame(const Frame& f, const std::string& path, OutputBatch& batch);
 
 /// M at a point: the frame's M (oriented) of the background cell containing x, or of the
 /// nearest cell when x lies outside. Holds a reference to the frame. Throws InputError when the

@@ -42,6 +42,12 @@ std::string gmsh_view_options(const Mesh& m) {
 }
 
 void write_gmsh_options(const Mesh& mesh, const std::string& msh_path) {
+  OutputBatch batch;
+  stage_gmsh_options(mesh, msh_path, batch);
+  batch.commit();
+}
+
+void stage_gmsh_options(const Mesh& mesh, const std::string& msh_path, OutputBatch& batch) {
   namespace fs = std::filesystem;
   if (msh_path.empty() || msh_path == "-" || msh_path.rfind("/dev/", 0) == 0) return;
   std::error_code ec;
@@ -50,15 +56,19 @@ void write_gmsh_options(const Mesh& mesh, const std::string& msh_path) {
   const std::string opt = msh_path + ".opt";
   const std::string text = gmsh_view_options(mesh);
   if (text.empty()) {
-    std::ifstream in(opt);
-    std::string first;
-    if (in && std::getline(in, first) && first + "\n" == kHeader) {
-      in.close();
-      fs::remove(opt, ec);
-    }
+    // a stale options file of ours removed once the mesh is replaced
+    batch.after_commit([opt] {
+      std::ifstream in(opt);
+      std::string first;
+      if (in && std::getline(in, first) && first + "\n" == kHeader) {
+        in.close();
+        std::error_code e;
+        fs::remove(opt, e);
+      }
+    });
     return;
   }
-  atomic_write(opt, [&](std::ostream& out) { out << text; });
+  batch.add(opt, [text](std::ostream& out) { out << text; });
 }
 
 }  // namespace quadapt

@@ -15,6 +15,7 @@
 // Other views keep Gmsh's defaults (all visible; pick one in Gmsh's view list).
 #include <string>
 
+#include "core/atomic_file.hpp"
 #include "mesh/mesh.hpp"
 
 namespace quadapt {
@@ -26,5 +27,7 @@ std::string gmsh_view_options(const Mesh& mesh);
 /// stale `msh_path`.opt that quadapt wrote earlier is removed (one of another origin is kept).
 /// Nothing is done for outputs that are not files in a directory ("-", /dev/..., FIFOs).
 void write_gmsh_options(const Mesh& mesh, const std::string& msh_path);
+/// The same staged in `batch` (write_msh's: the mesh and its options file replaced together).
+void stage_gmsh_options(const Mesh& mesh, const std::string& msh_path, OutputBatch& batch);
 
 }  // namespace quadapt

@@ -26,6 +26,7 @@
 #include <iosfwd>
 #include <string>
 
+#include "core/atomic_file.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/validate.hpp"
 
@@ -42,6 +43,9 @@ Mesh read_valid_msh(const std::string& path, const ValidateOptions& v = {});
 /// PATH.opt beside it when the mesh has a DG field and PATH is a regular file, so Gmsh displays
 /// it smoothly (io/gmsh_options.hpp).
 void write_msh(const Mesh& mesh, const std::string& path);
+/// The same staged in `batch` (core/atomic_file.hpp) with its Gmsh options file: both are
+/// replaced at batch.commit(), neither if anything added to the batch fails first.
+void write_msh(const Mesh& mesh, const std::string& path, OutputBatch& batch);
 
 /// Stream variants (path only used in messages).
 Mesh read_msh(std::istream& in, const std::string& path_for_messages);

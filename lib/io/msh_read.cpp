@@ -174,8 +174,10 @@ class MshReader {
 
   /// A count that cannot exceed what the rest of the file could hold.
   long long bounded(long long n, const char* what) {
-    if (n < 0 || static_cast<unsigned long long>(n) > size_)
-      c_.fail("invalid " + std::string(what) + " " + std::to_string(n) + " (corrupt file?)");
+    if (n < 0) c_.fail("invalid " + std::string(what) + " " + std::to_string(n) + " (corrupt file?)");
+    if (static_cast<unsigned long long>(n) > size_)
+      c_.fail(std::string(what) + " " + std::to_string(n) + " is more than the file's " + std::to_string(size_) +
+              " bytes can hold: a truncated or corrupt file");
     return n;
   }
 

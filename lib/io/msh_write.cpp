@@ -325,10 +325,16 @@ void write_msh(const Mesh& m, std::ostream& os) {
   o.flush();
 }
 
-void write_msh(const Mesh& mesh, const std::string& path) {
+void write_msh(const Mesh& mesh, const std::string& path, OutputBatch& batch) {
   check_writable(mesh, path);
-  atomic_write(path, [&](std::ostream& os) { write_msh(mesh, os); });
-  write_gmsh_options(mesh, path);
+  batch.add(path, [&](std::ostream& os) { write_msh(mesh, os); });
+  stage_gmsh_options(mesh, path, batch);
+}
+
+void write_msh(const Mesh& mesh, const std::string& path) {
+  OutputBatch batch;
+  write_msh(mesh, path, batch);
+  batch.commit();
 }
 
 }  // namespace quadapt

@@ -51,7 +51,12 @@ cmp -s "$T/t1.msh" "$T/t2.msh" || fail "output depends on the thread count"
 
 # --- the coarse degree: auto = min(p, 2), reported; any q gives the same numbers; out of range refused
 dgsolve -q "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --coarse-degree 1 -o "$T/q1.msh"
-dgsolve -q "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --coarse-degree 5 -o "$T/q5.msh"
+dgsolve "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --coarse-degree 5 -o "$T/q5.msh" 2>"$T/q5.err"
+# a q above p runs as p, said (was silent: a reviewer read q = 2 only in the report)
+grep -q "warning: --coarse-degree 5 is above the degree 3 of the system: the coarse space used q = 3" "$T/q5.err" ||
+  fail "--coarse-degree 5 at p = 3: no warning: $(cat "$T/q5.err")"
+dgsolve "$T/sq8.msh" -c "$CASES/sshock.json" -p 3 --coarse-degree 3 -o "$T/q3.msh" 2>"$T/q3.err"
+! grep -q "coarse-degree" "$T/q3.err" || fail "--coarse-degree 3 at p = 3 warned: $(cat "$T/q3.err")"
 python3 - "$T/t1.json" "$T/q1.json" "$T/q5.json" <<'EOF'
 import json, sys
 a, b, c = (json.load(open(f)) for f in sys.argv[1:4])

@@ -94,7 +94,7 @@ set -e
 [ -s "$T/strict.msh" ] || { echo "FAIL: --strict wrote no mesh"; exit 1; }
 
 # 5. bad input: exit 2, one line naming the file, nothing written
-for bad in nofield nan singular; do
+for bad in nofield nan singular stretched huge; do
   $FRAME "$T/bad-$bad.msh" --n 2 --corrupt $bad
   set +e
   lpcvt "$T/bad-$bad.msh" -o "$T/out-$bad.msh" 2> "$T/bad-$bad.err"
@@ -107,6 +107,10 @@ done
 grep -q "Vinv" "$T/bad-nofield.err"
 grep -q "not finite" "$T/bad-nan.err"
 grep -q "singular" "$T/bad-singular.err"
+# the refusal names what is wrong: a stretch beyond 1e12 (it said "det M = 1.000e+00"), an overflow
+grep -q "singular frame \"Vinv\" (det M = 1.000e+00, stretch sigma_max/sigma_min = 1.000e+16, more than the 1e12 a frame may have)" \
+  "$T/bad-stretched.err" || { echo "FAIL: stretched frame: $(cat "$T/bad-stretched.err")"; exit 1; }
+grep -q "entries too large" "$T/bad-huge.err" || { echo "FAIL: huge frame: $(cat "$T/bad-huge.err")"; exit 1; }
 # never overwrite the input
 set +e
 lpcvt "$T/iso.msh" -o "$T/iso.msh" -q 2> /dev/null

@@ -19,7 +19,7 @@ L-shape) and per cell $ElementData "Vinv" = V^-1, V = R(theta) diag(h1, h2), 9 c
   each quad's vertex list starting at a random corner (counter-clockwise kept): tools that read
   frames must give the same outputs (mesh/canonical.hpp). --finer-cell and --corrupt-cell name
   cells by their unshuffled tags.
-  --corrupt nan|singular|none: damage one cell's frame (bad-input tests): the cell with element
+  --corrupt nan|singular|stretched|huge|none: damage one cell's frame (bad-input tests): the cell with element
   tag --corrupt-cell K (default 1; tags are 1..cells in file order, rows from the bottom).
 """
 import argparse
@@ -41,7 +41,7 @@ def main():
     ap.add_argument("--band-radius", type=float, default=0.6)
     ap.add_argument("--band-width", type=float, default=0.06)
     ap.add_argument("--philip", action="store_true", help="no $FrameConvention section (read as PHiLiP's sizes)")
-    ap.add_argument("--corrupt", choices=["none", "nan", "singular", "nofield"], default="none")
+    ap.add_argument("--corrupt", choices=["none", "nan", "singular", "stretched", "huge", "nofield"], default="none")
     ap.add_argument("--corrupt-cell", type=int, default=1)
     ap.add_argument("--shuffle", type=int, default=0, help="list nodes and cells in a random order (this seed)")
     ap.add_argument("--finer-cell", type=int, default=0, help="make this cell's metric finer by 1e-6 (the lattice seed)")
@@ -88,6 +88,10 @@ def main():
         frames[a.corrupt_cell - 1] = [float("nan")] * 4
     elif a.corrupt == "singular":
         frames[a.corrupt_cell - 1] = [1.0, 2.0, 2.0, 4.0]
+    elif a.corrupt == "stretched":  # det M = 1, stretch 1e16
+        frames[a.corrupt_cell - 1] = [1e8, 0.0, 0.0, 1e-8]
+    elif a.corrupt == "huge":  # |M|^2 overflows
+        frames[a.corrupt_cell - 1] = [1e300, 0.0, 0.0, 1e300]
     if a.shuffle:
         import random
         rng = random.Random(a.shuffle)

@@ -48,6 +48,14 @@ for c in "dgsolve|-p 2.5|--degree 2.5: not a whole number" "lpcvt|--seed abc|--s
   grep -qF -- "$want" <<<"$msg" || fail "$tool $opt: '$msg' lacks '$want'"
 done
 [ ! -e "$T/y.msh" ] || fail "output written despite a malformed option value"
+# a whole number too large for its type is not "not a whole number" (a CLI audit)
+rc=0; msg=$(dgsolve "$S/examples/meshes/square16.msh" -c "$S/examples/cases/smooth.json" -o "$T/y.msh" --threads 99999999999 2>&1) || rc=$?
+[ $rc -eq 2 ] && grep -qF -- "--threads 99999999999: a whole number out of range" <<<"$msg" || fail "--threads 99999999999: exit $rc, $msg"
+# lpcvt: --complexity without --degree is refused before the frame is read and filtered (it
+# printed three progress lines first)
+rc=0; msg=$(lpcvt "$S/tests/fixtures/philip/input_ss15_fb_p1_3.msh" -o "$T/y.msh" --complexity 4000 2>&1) || rc=$?
+[ $rc -eq 2 ] && [ "$(grep -c . <<<"$msg")" -eq 1 ] && grep -q -- "--complexity and --degree go together" <<<"$msg" ||
+  fail "lpcvt --complexity alone: exit $rc, $msg"
 
 # --- a report that would overwrite an input is named as the report, with its remedy (was
 # "X.json: output would overwrite the input file X.json" for `-c X.json -o X.msh`)

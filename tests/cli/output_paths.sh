@@ -212,6 +212,38 @@ same_bytes mm1.json case.json
 dgsolve -q plain.msh -c case.json -p 1 -o mm2.msh
 dgsolve -q plain.msh -c case.json -p 1 -o mm2.msh || fail "an earlier report was not replaced"
 dgsolve -q plain.msh -c case.json -p 1 -o mm1.msh --report mm1r.json || fail "--report beside a user's file"
+# an explicit --report naming a user's file is not replaced either (`--report case.json` of a case
+# this run does not read replaced it with JSON: a CLI audit); an earlier report or an empty file is
+expect_exit 2 "mm1.json: exists and is not a quadapt report; --report would replace it" \
+  estimate-frame sol.msh -o sh2.msh --report mm1.json
+same_bytes mm1.json case.json
+[ ! -e sh2.msh ] || fail "estimate-frame wrote sh2.msh before refusing --report mm1.json"
+: > empty.json
+estimate-frame -q sol.msh -o sh2.msh --report empty.json
+estimate-frame -q sol.msh -o sh2.msh --report empty.json || fail "--report over an earlier report refused"
+# all or nothing (exit 2 = nothing written; a CLI audit): OUT.msh.opt that cannot be written is
+# refused before the solve (it was found after OUT.msh had been replaced, the old report left)
+echo OLD > aon.msh
+mkdir aon.msh.opt
+expect_exit 2 "aon.msh.opt: is a directory" dgsolve sol.msh -c case.json -p 1 -o aon.msh
+[ "$(cat aon.msh)" = OLD ] || fail "dgsolve replaced aon.msh, then refused aon.msh.opt"
+rmdir aon.msh.opt
+# a side output that fails leaves the main output as it was (lpcvt --write-frame after tri.msh)
+if [ -w /dev/full ]; then
+  echo OLD > aon.msh
+  expect_exit 2 "/dev/full" lpcvt -q frame.msh -o aon.msh --write-frame /dev/full
+  [ "$(cat aon.msh)" = OLD ] || fail "lpcvt replaced aon.msh, then failed on --write-frame /dev/full"
+  for f in .aon.tmp-* ; do [ ! -e "$f" ] || fail "left a temporary $f"; done
+fi
+# a file-size limit (ulimit -f) is a failed write like a full disk: exit 2, the old output kept,
+# no temporary left (SIGXFSZ killed the tool and left a truncated .NAME.tmp-PID.msh)
+echo OLD > aon.msh
+rc=0
+ERR=$( (ulimit -f 8; meshconvert -q sol.msh -o aon.msh) 2>&1 >/dev/null) || rc=$?
+[ "$rc" -eq 2 ] || fail "ulimit -f: exit $rc (want 2): $ERR"
+case "$ERR" in *"aon.msh: write failed (File too large)"*) ;; *) fail "ulimit -f: $ERR" ;; esac
+[ "$(cat aon.msh)" = OLD ] || fail "ulimit -f: aon.msh replaced"
+for f in .aon.tmp-* ; do [ ! -e "$f" ] || fail "ulimit -f: left a temporary $f"; done
 # the outputs written, the report not (a full device): exit 1, "the outputs were written"
 if [ -w /dev/full ]; then
   expect_exit 1 "" meshconvert sol.msh -o full.msh --report /dev/full

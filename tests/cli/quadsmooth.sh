@@ -185,4 +185,13 @@ grep -q "warning: .* cells of $IN have their centroid outside $T/small.msh's bac
 python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['cells_outside_frame'] > 0, r['cells_outside_frame']" "$T/fsm.json" || fail "cells_outside_frame"
 quadsmooth "$IN" --frame "$T/frame.msh" -o "$T/fs2.msh" 2>"$T/err5"
 ! grep -q "outside" "$T/err5" || fail "coverage warning with a covering frame: $(cat "$T/err5")"
+# recombine --frame says it too (it used the nearest frame cell silently: a CLI audit)
+lpcvt -q "$T/frame.msh" -o "$T/ct.msh"
+recombine "$T/ct.msh" --frame "$T/small.msh" -o "$T/cq.msh" 2>"$T/err6" || fail "recombine, frame not covering: exit $?"
+grep -q "warning: .* cells of $T/ct.msh have their centroid outside $T/small.msh's background" "$T/err6" ||
+  fail "recombine: no coverage warning: $(cat "$T/err6")"
+python3 -c "import json,sys; r=json.load(open(sys.argv[1])); assert r['cells_outside_frame'] > 0, r['cells_outside_frame']" "$T/cq.json" ||
+  fail "recombine: cells_outside_frame"
+recombine "$T/ct.msh" --frame "$T/frame.msh" -o "$T/cq2.msh" 2>"$T/err7"
+! grep -q "outside" "$T/err7" || fail "recombine: coverage warning with a covering frame: $(cat "$T/err7")"
 echo "quadsmooth: all checks passed"

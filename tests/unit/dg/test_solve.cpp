@@ -68,4 +68,15 @@ TEST_CASE("dg_solve: pure advection in downwind block order: block ILU is exact 
   opt.solver.kind = LinearSolverKind::UmfPack;
   DGSolveResult d = dg_solve(m, cs, opt);
   CHECK((r.U - d.U).norm() < 1e-11 * d.U.norm());
+  // gmres-2level asked for explicitly runs here too (the coarse space is built whenever it is
+  // asked for: needs_coarse_space; it used to throw "needs the mesh's coarse space")
+  opt.solver.kind = LinearSolverKind::GmresTwoLevel;
+  DGSolveResult t = dg_solve(m, cs, opt);
+  CHECK(t.solve.solver == "gmres-2level");
+  CHECK(t.solve.coarse_degree == 2);
+  CHECK((t.U - d.U).norm() < 1e-11 * d.U.norm());
+  CHECK_FALSE(needs_coarse_space(LinearSolverKind::Auto, true));
+  CHECK(needs_coarse_space(LinearSolverKind::Auto, false));
+  CHECK(needs_coarse_space(LinearSolverKind::GmresTwoLevel, true));
+  CHECK_FALSE(needs_coarse_space(LinearSolverKind::GmresBlockILU, false));
 }
