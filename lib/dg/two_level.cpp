@@ -25,8 +25,8 @@ CoarseSpace make_coarse_space(const Mesh& mesh, int p, int degree) {
   cs.nb = (p + 1) * (p + 1);
   cs.m = n1 * n1;
   cs.dof.assign(static_cast<size_t>(n) * cs.m, -1);
-  // Mesh nodes first (a node in no cell gets a 1 on the coarse diagonal), then the edges' inner
-  // points in the order the cells first meet the edges, then the cells' inner points.
+  // Mesh nodes first (a node in no cell gets a 1 on the coarse diagonal), then, cell by cell, the
+  // inner points of its edges not met before and its own inner points (one counter for both).
   int next = mesh.num_nodes();
   std::unordered_map<std::uint64_t, int> edge_base;
   for (int c = 0; c < n; ++c) {
