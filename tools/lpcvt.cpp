@@ -93,7 +93,8 @@ int main(int argc, char** argv) {
   app.add_option("--smooth", job.smooth, "Log-Euclidean smoothing of the metric M^T M across background cells: passes (0 = none; frames' default 4, --analytic's 0)")
       ->capture_default_str()->check(CLI::Range(0, 1000));
   app.add_option("--gradation", job.gradation, "Anisotropic size gradation: growth per unit metric length between "
-                 "neighbouring background cells (0 = none; frames' default 2, --analytic's 0); the point count is kept");
+                 "neighbouring background cells (0 = none; frames' default 2, --analytic's 0); the point count is kept")
+      ->capture_default_str();  // the mode's default, recorded in the report's options
   std::string orientation = job.free_orientation ? "boundary" : "frame";
   app.add_option("--orientation", orientation, "Lattice orientation where the frame is nearly isotropic (stretch < 1.5): "
                  "boundary (frames' default: a cross field aligned with the walls and the anisotropic cells; the "

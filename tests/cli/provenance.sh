@@ -53,6 +53,8 @@ for r in (tri, quad, sad, sol):
 assert tri["options"]["lp_exponent"] == 4 and quad["options"]["min_quality"] == 0.2, (tri["options"], quad["options"])
 assert tri["options"]["init"] == "lattice" and tri["options"]["precondition"] is True, tri["options"]
 assert sad["options"]["init"] == "uniform" and sad["options"]["precondition"] is False, sad["options"]
+# mode-dependent defaults are recorded as the mode's (gradation was missing unless given: a CLI audit)
+assert tri["options"]["gradation"] == 2 and sad["options"]["gradation"] == 0, (tri["options"], sad["options"])
 assert sol["options"]["degree"] == 1, sol["options"]
 print("provenance: options typed, once each")
 PY
