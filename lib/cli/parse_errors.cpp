@@ -3,6 +3,8 @@
 #include <cctype>
 #include <cstdlib>
 #include <regex>
+#include <sstream>
+#include <vector>
 
 #include "core/format.hpp"
 
@@ -74,6 +76,23 @@ std::string parse_error_message(const CLI::App& app, int argc, char** argv, cons
     if (what && type.rfind("FLOAT", 0) != 0 && std::regex_match(m[2].str(), integer))
       return m[1].str() + " " + m[2].str() + ": a whole number out of range";
     if (what) return m[1].str() + " " + m[2].str() + ": not " + what;
+  }
+  // CLI11's count messages, in the tools' words
+  static const std::regex at_least(R"((\S+): At least (\d+) required but received (\d+))");
+  if (std::smatch m; std::regex_search(msg, m, at_least))
+    return m[1].str() + " takes " + m[2].str() + " values, got " + m[3].str();
+  static const std::regex at_most(R"((\S+): At Most 1 required but received (\d+))");
+  if (std::smatch m; std::regex_search(msg, m, at_most))
+    return m[1].str() + " is given " + m[2].str() + " times: give it once";
+  static const std::regex extras(R"(The following arguments? (?:was|were) not expected: (.*))");
+  if (std::smatch m; std::regex_search(msg, m, extras)) {
+    // CLI11 lists them last first
+    std::vector<std::string> args;
+    std::istringstream is(m[1].str());
+    for (std::string a; is >> a;) args.insert(args.begin(), a);
+    std::string list;
+    for (const std::string& a : args) list += (list.empty() ? "" : " ") + a;
+    return "unexpected argument" + std::string(args.size() > 1 ? "s " : " ") + list;
   }
   static const std::regex long_number(R"(-?[0-9]+\.?[0-9]*(?:[eE][-+]?[0-9]+)?)");
   std::string out;

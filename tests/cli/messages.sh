@@ -48,6 +48,17 @@ for c in "dgsolve|-p 2.5|--degree 2.5: not a whole number" "lpcvt|--seed abc|--s
   grep -qF -- "$want" <<<"$msg" || fail "$tool $opt: '$msg' lacks '$want'"
 done
 [ ! -e "$T/y.msh" ] || fail "output written despite a malformed option value"
+# CLI11's count messages in the tools' words (were "At least 2 required but received 1", "At Most 1
+# required but received 2", "The following arguments were not expected: b a")
+M16="$S/examples/meshes/square16.msh"
+for c in "lpcvt|$M16 -o $T/y.msh --lattice-phase 0.5|--lattice-phase takes 2 values, got 1" \
+         "dgsolve|$M16 -c $S/examples/cases/smooth.json -p 1 -p 2 -o $T/y.msh|--degree is given 2 times: give it once" \
+         "meshplot|$M16 a b -o $T/y.svg|unexpected arguments a b"; do
+  IFS='|' read -r tool args want <<<"$c"
+  rc=0; msg=$($tool $args 2>&1) || rc=$?
+  [ $rc -eq 2 ] || fail "$tool $args: exit $rc"
+  grep -qF -- "$tool: $want (see $tool --help)" <<<"$msg" || fail "$tool $args: '$msg' lacks '$want'"
+done
 # a whole number too large for its type is not "not a whole number" (a CLI audit)
 rc=0; msg=$(dgsolve "$S/examples/meshes/square16.msh" -c "$S/examples/cases/smooth.json" -o "$T/y.msh" --threads 99999999999 2>&1) || rc=$?
 [ $rc -eq 2 ] && grep -qF -- "--threads 99999999999: a whole number out of range" <<<"$msg" || fail "--threads 99999999999: exit $rc, $msg"
