@@ -76,6 +76,23 @@ p = mann_whitney_p(list(range(18)), list(range(100, 118)))
 assert abs(p / math.erfc(161.5 / math.sqrt(18 * 18 * 37 / 12) / math.sqrt(2)) - 1) < 1e-12 and p < 1e-6, p
 assert mann_whitney_p(list(range(0, 36, 2)), list(range(1, 37, 2))) > 0.5
 PYEOF
+# the convergence table's row: the effectivity of an error at J's rounding level is flagged in
+# `warnings` (a reviewer's p = 3 step printed 3.97 for |J - J_H| = 1.2e-13, J = 1.1); a resolved
+# error is not
+"$PY" - "$SRC/scripts/loop" "$T/steps" <<'PYEOF' || fail "effectivity at the rounding level"
+import json, os, sys
+sys.path.insert(0, sys.argv[1])
+from loopctl import row_for
+for k, (err, est) in enumerate([(1.17e-13, 4.64e-13), (2.1e-10, 2.05e-10)]):
+    d = os.path.join(sys.argv[2], "step-%d" % k); os.makedirs(d)
+    json.dump({"cells": 10, "dofs": 90, "functional": 1.1 - err, "functional_exact": 1.1, "functional_error": err,
+               "time_s": 0.1}, open(os.path.join(d, "sol.json"), "w"))
+    json.dump({"tool": "adjoint", "functional_error_estimate": est, "timings": {"total": 0.2}}, open(os.path.join(d, "dwr.json"), "w"))
+r0 = row_for(os.path.join(sys.argv[2], "step-0"), 0)
+r1 = row_for(os.path.join(sys.argv[2], "step-1"), 1)
+assert abs(r0["effectivity"] / (4.64 / 1.17) - 1) < 1e-2 and "at the rounding level of J" in (r0["warnings"] or ""), r0
+assert abs(r1["effectivity"] / (2.05 / 2.1) - 1) < 1e-4 and r1["warnings"] is None, r1
+PYEOF
 # lpcvt-vs.py's command line: --help is its usage (exit 0); an unknown option, an extra argument or
 # a missing RUNS directory is one line on stderr and exit 2
 "$PY" "$SRC/scripts/loop/lpcvt-vs.py" --help > "$T/vs-help" || fail "lpcvt-vs.py --help: exit $?"
