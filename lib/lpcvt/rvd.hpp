@@ -62,6 +62,8 @@ struct RvdWorkspace {
   std::vector<Vec2> box_ext;        ///< per site: the box's half extents around the site
   std::vector<std::array<int, 2>> box_at;  ///< per site: offset and length in box_sites
   std::vector<int> box_sites;       ///< the boxes' sites, one after another
+  std::vector<Vec2> box_d;          ///< ... and their offsets x_j - x_i from the box's site (read in
+                                    ///< order: the distance test touches no site's memory)
   long box_queries = 0, box_hits = 0;  ///< site-tree queries made / answered from a cached box
   long ellipse_queries = 0;  ///< searches answered by an ellipse query of the site tree (set_ellipse_ratio)
 };
@@ -136,7 +138,12 @@ class RestrictedVoronoi {
   /// when this thread's last query for site i (this evaluation) covered it, else a site-tree
   /// query of kBoxMargin * ext, cached (a site's pieces in other cells mostly fit in it). A
   /// superset of the sites in x_i +- ext, in the tree's order (SiteTree::query).
-  std::pair<const int*, const int*> security_candidates(int i, const Vec2& ext, RvdWorkspace& ws) const;
+  struct Candidates {
+    const int* site;  ///< the sites j
+    const Vec2* d;    ///< x_j - x_i
+    int n;
+  };
+  Candidates security_candidates(int i, const Vec2& ext, RvdWorkspace& ws) const;
   static constexpr double kBoxMargin = 1.1;
 };
 
