@@ -187,47 +187,51 @@ void RestrictedVoronoi::find_starts() {
   const std::vector<Vec2>& x = *sites_;
   // each cell on its own (any thread, same answers); parallel where there is enough work
   const int nq = bg.num_cells();
-#pragma omp parallel for schedule(static) if (nq >= 256 && x.size() >= 2000)
-  for (int q = 0; q < nq; ++q) {
-    int s = start_[q];
-    if (s < 0) continue;
-    const Mat2 G = bg.partition_metric(q);
-    auto dist = [&](int i) {
-      const Vec2 d = x[i] - centroids[q];
-      return d.dot(G * d);
-    };
-    double ds = dist(s);
-    // neighbours and their neighbours (the graph is Delaunay for the midpoint metrics, which
-    // may differ from G_Q where the frame grades)
-    for (int guard = 0; guard < 10000; ++guard) {
-      int best = -1;
-      for (const int* j = mg_->nbr_begin(s); j != mg_->nbr_end(s); ++j) {
-        if (dist(*j) < ds) {
-          ds = dist(*j);
-          best = *j;
+#pragma omp parallel if (nq >= 256 && x.size() >= 2000)
+  {
+    std::vector<int> cand;  // the exact check's sites, reused (one allocation per thread, not per cell)
+#pragma omp for schedule(static)
+    for (int q = 0; q < nq; ++q) {
+      int s = start_[q];
+      if (s < 0) continue;
+      const Mat2 G = bg.partition_metric(q);
+      auto dist = [&](int i) {
+        const Vec2 d = x[i] - centroids[q];
+        return d.dot(G * d);
+      };
+      double ds = dist(s);
+      // neighbours and their neighbours (the graph is Delaunay for the midpoint metrics, which
+      // may differ from G_Q where the frame grades)
+      for (int guard = 0; guard < 10000; ++guard) {
+        int best = -1;
+        for (const int* j = mg_->nbr_begin(s); j != mg_->nbr_end(s); ++j) {
+          if (dist(*j) < ds) {
+            ds = dist(*j);
+            best = *j;
+          }
+          for (const int* k = mg_->nbr_begin(*j); k != mg_->nbr_end(*j); ++k)
+            if (dist(*k) < ds) {
+              ds = dist(*k);
+              best = *k;
+            }
         }
-        for (const int* k = mg_->nbr_begin(*j); k != mg_->nbr_end(*j); ++k)
-          if (dist(*k) < ds) {
-            ds = dist(*k);
-            best = *k;
+        if (best < 0) break;
+        s = best;
+      }
+      // exact: every site in the box of the G-ellipse through s
+      {
+        const Mat2 Gi = G.inverse();
+        const Vec2 ext(std::sqrt(ds * Gi(0, 0)), std::sqrt(ds * Gi(1, 1)));
+        cand.clear();
+        tree_->query(centroids[q] - ext, centroids[q] + ext, cand);
+        for (int j : cand)
+          if (dist(j) < ds || (dist(j) == ds && j < s)) {
+            ds = dist(j);
+            s = j;
           }
       }
-      if (best < 0) break;
-      s = best;
+      start_[q] = s;
     }
-    // exact: every site in the box of the G-ellipse through s
-    {
-      const Mat2 Gi = G.inverse();
-      const Vec2 ext(std::sqrt(ds * Gi(0, 0)), std::sqrt(ds * Gi(1, 1)));
-      std::vector<int> cand;
-      tree_->query(centroids[q] - ext, centroids[q] + ext, cand);
-      for (int j : cand)
-        if (dist(j) < ds || (dist(j) == ds && j < s)) {
-          ds = dist(j);
-          s = j;
-        }
-    }
-    start_[q] = s;
   }
 }
 
