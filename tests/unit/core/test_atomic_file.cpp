@@ -42,6 +42,45 @@ TEST_CASE("atomic_write replaces a regular file; a failing writer leaves the old
   CHECK(t.entries() == 1);
 }
 
+// OutputBatch: several outputs replaced as one (a mesh and its .opt, lpcvt's side outputs): a
+// failure in any add() replaces none of them and leaves no temporary; commit() replaces all, then
+// runs the after_commit steps.
+TEST_CASE("OutputBatch: all or nothing") {
+  TempDir t;
+  put(t / "a.txt", "old a");
+  put(t / "b.txt", "old b");
+  {
+    OutputBatch b;
+    b.add(t / "a.txt", [](std::ostream& os) { os << "new a"; });
+    CHECK(slurp(t / "a.txt") == "old a");  // nothing replaced before commit
+    CHECK_THROWS_AS(b.add(t / "b.txt", [](std::ostream& os) { os << "half"; throw std::runtime_error("boom"); }),
+                    std::runtime_error);
+  }  // the batch dropped without commit
+  CHECK(slurp(t / "a.txt") == "old a");
+  CHECK(slurp(t / "b.txt") == "old b");
+  CHECK(t.entries() == 2);  // no temporaries
+  bool after = false;
+  {
+    OutputBatch b;
+    b.add(t / "a.txt", [](std::ostream& os) { os << "new a"; });
+    b.add(t / "c.txt", [](std::ostream& os) { os << "new c"; });
+    b.after_commit([&] { after = fs::exists(std::string(t / "c.txt")); });
+    b.commit();
+  }
+  CHECK(after);  // after the renames
+  CHECK(slurp(t / "a.txt") == "new a");
+  CHECK(slurp(t / "c.txt") == "new c");
+  CHECK(t.entries() == 3);
+  // a device that fails (/dev/full) is written before any rename: the regular target is kept
+  if (::access("/dev/full", W_OK) == 0) {
+    OutputBatch b;
+    b.add(t / "a.txt", [](std::ostream& os) { os << "newer a"; });
+    b.add("/dev/full", [](std::ostream& os) { os << std::string(1 << 16, 'x'); });
+    CHECK_THROWS_AS(b.commit(), ExternalError);
+    CHECK(slurp(t / "a.txt") == "new a");
+  }
+}
+
 TEST_CASE("resolve_output classifies paths") {
   TempDir t;
   CHECK(resolve_output("-").kind == OutputTarget::Kind::Stdout);
