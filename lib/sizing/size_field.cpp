@@ -199,7 +199,16 @@ SizeResult solve_feature_size(const Mesh& shape, const SizeOptions& opt, const s
     for (int k = 0; k < nc; ++k)
       r.B[k] = error_constant(c.s.A1[k], std::min(c.s.A1[k], effective_A2(c.s.A1[k], c.s.A2[k], n, opt.max_anisotropy)), n, q);
   double bmax = 0;
-  for (double B : r.B) bmax = std::max(bmax, B);
+  for (int k = 0; k < nc; ++k) {
+    // a finite but absurd model (A1 = 1e308) overflows here; it used to surface as "the largest
+    // reachable complexity is 144 DOFs" (every other cell's B / bmax was 0): a CLI audit
+    if (!std::isfinite(r.B[k]))
+      throw InputError(source, cell_label(shape, k) + ": the error constant B overflows (" +
+                                   (c.s.A1.empty() ? "B = " + num(c.s.B[k])
+                                                   : "model A1 = " + num(c.s.A1[k]) + ", A2 = " + num(c.s.A2[k])) +
+                                   "): the shape's error model is out of range");
+    bmax = std::max(bmax, r.B[k]);
+  }
   const bool uniform = !(bmax > 0);
   // b_k = B_k^e, normalised by bmax^e to keep K in range
   std::vector<double> b(nc);

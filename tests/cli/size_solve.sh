@@ -131,4 +131,18 @@ L[first] = tag + " -1"
 open(sys.argv[2], "w").write("\n".join(L))
 PY
 expect_fail "dwrneg.msh: field \"dwr\" is negative in cell [0-9]* (centroid (" "$SHAPE" --dwr "$T/dwrneg.msh" --growth 1.5
+# a finite but absurd error model (model_A1 = 1e308 in one cell): named as such (it overflowed into
+# "exceeds the largest reachable ...: 144 DOFs (lower the complexity or --hmin)": a CLI audit)
+python3 - "$SHAPE" "$T/hugeA1.msh" <<'PY'
+import sys
+L = open(sys.argv[1]).read().split("\n")
+i = L.index('"model_A1"') - 2
+j = i + 2 + int(L[i + 1])
+k = j + 1 + int(L[j])
+first = k + 1 + int(L[k])
+tag, v = L[first].split()
+L[first] = tag + " 1e308"
+open(sys.argv[2], "w").write("\n".join(L))
+PY
+expect_fail "hugeA1.msh: cell [0-9]* (centroid (.*)): the error constant B overflows (model A1 = 1e+308" "$T/hugeA1.msh" --complexity 4000
 echo "size_solve: OK"
