@@ -41,12 +41,6 @@ std::string gmsh_view_options(const Mesh& m) {
   return any ? o.str() : "";
 }
 
-void write_gmsh_options(const Mesh& mesh, const std::string& msh_path) {
-  OutputBatch batch;
-  stage_gmsh_options(mesh, msh_path, batch);
-  batch.commit();
-}
-
 void stage_gmsh_options(const Mesh& mesh, const std::string& msh_path, OutputBatch& batch) {
   namespace fs = std::filesystem;
   if (msh_path.empty() || msh_path == "-" || msh_path.rfind("/dev/", 0) == 0) return;

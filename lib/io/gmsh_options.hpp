@@ -23,11 +23,10 @@ namespace quadapt {
 /// The options text for `mesh` written as a .msh file; empty when it has no DG field.
 std::string gmsh_view_options(const Mesh& mesh);
 
-/// Writes `msh_path`.opt atomically when gmsh_view_options is not empty. When it is empty, a
-/// stale `msh_path`.opt that quadapt wrote earlier is removed (one of another origin is kept).
-/// Nothing is done for outputs that are not files in a directory ("-", /dev/..., FIFOs).
-void write_gmsh_options(const Mesh& mesh, const std::string& msh_path);
-/// The same staged in `batch` (write_msh's: the mesh and its options file replaced together).
+/// Stages `msh_path`.opt in `batch` (write_msh's: the mesh and its options file are replaced
+/// together, core/atomic_file.hpp) when gmsh_view_options is not empty. When it is empty, a stale
+/// `msh_path`.opt that quadapt wrote earlier is removed after the commit (one of another origin is
+/// kept). Nothing is done for outputs that are not files in a directory ("-", /dev/..., FIFOs).
 void stage_gmsh_options(const Mesh& mesh, const std::string& msh_path, OutputBatch& batch);
 
 }  // namespace quadapt
