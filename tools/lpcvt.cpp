@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
     if (!in.empty()) tool.input(in);
     if (!geometry.empty()) tool.input(geometry);
     tool.output_mesh(out);
-    if (!voronoi_out.empty()) tool.output(voronoi_out);
+    if (!voronoi_out.empty()) tool.output_json(voronoi_out, "--voronoi");
     if (!frame_out.empty()) tool.output_mesh(frame_out);
     opt.exact_count = !no_exact;
     if (!lattice_phase.empty()) {

@@ -149,6 +149,30 @@ void Tool::set_report_path(const std::string& p) {
   declare_report();
 }
 
+void Tool::output_json(const std::string& path, const std::string& what) {
+  output(path);
+  if (path != "-") refuse_foreign_json(path, what, "JSON", "give " + what + " another path", /*allow_empty=*/true);
+}
+
+void Tool::refuse_foreign_json(const std::string& path, const std::string& what, const std::string& writes,
+                               const std::string& fix, bool allow_empty) {
+  // a JSON output named like a file the toolkit reads or writes (`--report keep.msh`, a picture,
+  // the loop's table, Gmsh's options) would overwrite it with JSON
+  const std::string ext = lower_extension(path);
+  static const char* const kNotJson[] = {".msh", ".vtu", ".vtk", ".geo", ".png", ".svg", ".pdf", ".csv", ".opt"};
+  if (std::find(std::begin(kNotJson), std::end(kNotJson), ext) != std::end(kNotJson))
+    throw InputError(path, what + " writes " + writes + ", not a " + ext.substr(1) + " file: give it a .json name");
+  // nor a file of the user's that is in the way (`--report case.json` of a case not read this
+  // time, `-o mm1.msh` beside a case file mm1.json): only a quadapt JSON (an earlier report, an
+  // earlier --voronoi) is replaced, and an empty file where allowed
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || (allow_empty && size == 0) || is_tool_report(path)) return;
+  const std::string kind = writes == "a JSON report" ? "a quadapt report" : "quadapt's JSON (no \"tool\" key)";
+  throw InputError(path, "exists and is not " + kind + "; " + what + " would replace it: " + fix);
+}
+
 void Tool::declare_report() {
   if (report_path_.empty()) return;
   resolve_output(report_path_);
@@ -156,32 +180,14 @@ void Tool::declare_report() {
   // named in a refusal: `dgsolve M -c X.json -o X.msh` would write its report X.json over the case
   if (report_explicit_) {
     protect_output(report_path_, "the report (--report)", "give --report another path");
+    if (report_path_ != "-")
+      refuse_foreign_json(report_path_, "--report", "a JSON report", "give --report another path (or remove the file)",
+                          /*allow_empty=*/true);
   } else {
     const std::string beside = "the report written beside the output " + (outputs_.empty() ? std::string() : outputs_.front());
     protect_output(report_path_, beside, "give --report another path, or -o another name");
-    // a file of the user's that happens to have the report's name (`-o mm1.msh` beside a case
-    // file mm1.json) is not replaced unasked: only an earlier report (a JSON object with "tool")
-    std::error_code ec;
-    if (std::filesystem::is_regular_file(report_path_, ec) && !is_tool_report(report_path_))
-      throw InputError(report_path_, "exists and is not a quadapt report; " + beside +
-                                         " would replace it: give --report another path, or -o another name");
-  }
-  // a report named like a file the toolkit reads or writes (`--report keep.msh`, a picture, the loop's
-  // table, Gmsh's options) would overwrite it with JSON (checked after the refusals above, which name
-  // the worse mistake: an input, a missing folder)
-  if (report_explicit_) {
-    const std::string ext = lower_extension(report_path_);
-    static const char* const kNotReports[] = {".msh", ".vtu", ".vtk", ".geo", ".png", ".svg", ".pdf", ".csv", ".opt"};
-    if (std::find(std::begin(kNotReports), std::end(kNotReports), ext) != std::end(kNotReports))
-      throw InputError(report_path_, "--report writes a JSON report, not a " + ext.substr(1) +
-                                         " file: give it a .json name");
-    // nor a file of the user's given by mistake (`--report case.json` of a case not read this
-    // time): only an earlier report, or an empty file (mktemp's), is replaced
-    std::error_code ec;
-    if (std::filesystem::is_regular_file(report_path_, ec) && std::filesystem::file_size(report_path_, ec) > 0 &&
-        !ec && !is_tool_report(report_path_))
-      throw InputError(report_path_, "exists and is not a quadapt report; --report would replace it: give "
-                                     "--report another path (or remove the file)");
+    refuse_foreign_json(report_path_, beside, "a JSON report", "give --report another path, or -o another name",
+                        /*allow_empty=*/false);
   }
 }
 

@@ -63,6 +63,12 @@ class Tool {
   /// MSH text that ParaView cannot read), naming meshconvert for the conversion. Names without
   /// an extension, "-", devices and FIFOs are accepted.
   void output_mesh(const std::string& path);
+  /// The same for a JSON side output other than the report (lpcvt's --voronoi), named `what` in
+  /// refusals: also throws InputError when the name has a mesh, picture or table extension
+  /// (.msh, .vtu, .png, ...: JSON text would replace such a file), or when a non-empty regular
+  /// file that is not a quadapt JSON (an object with a "tool" string) is in the way — a rerun
+  /// replaces its own earlier output, never a file of the user's.
+  void output_json(const std::string& path, const std::string& what);
 
   /// How a tool reads an input mesh: read_valid_msh(path, v) (exit 2 on what it refuses), then
   /// the checks that only warn (mesh/near_boundary.hpp: boundary edges lying on other boundary
@@ -109,6 +115,11 @@ class Tool {
 
  private:
   void declare_report();
+  /// The JSON-output refusals shared by --report and output_json (see there); `allow_empty`:
+  /// an empty file (mktemp's) may be replaced.
+  /// `writes` says what: "a JSON report", "JSON".
+  static void refuse_foreign_json(const std::string& path, const std::string& what, const std::string& writes,
+                                  const std::string& fix, bool allow_empty);
   static void use_stdio(const std::string& path, bool& used, const char* what);
 
   std::string name_;

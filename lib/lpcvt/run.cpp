@@ -332,6 +332,8 @@ Frame meshed_frame(const Background& bg) {
 
 nlohmann::json voronoi_report(const Background& bg, const LpcvtResult& r, const nlohmann::json& report) {
   nlohmann::json v;
+  v["tool"] = "lpcvt";  // a rerun's --voronoi replaces this file, never one of the user's (Tool::output_json)
+  v["content"] = "voronoi";
   v["initial"] = voronoi_json(bg, r.initial_sites, r.nfixed);
   v["final"] = voronoi_json(bg, r.sites, r.nfixed);
   v["history"] = report["history"];

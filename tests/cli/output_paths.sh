@@ -221,6 +221,15 @@ same_bytes mm1.json case.json
 : > empty.json
 estimate-frame -q sol.msh -o sh2.msh --report empty.json
 estimate-frame -q sol.msh -o sh2.msh --report empty.json || fail "--report over an earlier report refused"
+# lpcvt's --voronoi is JSON too: a user's file in its way is refused before any work (it was
+# replaced: a CLI audit), a mesh name is refused, and a rerun replaces its own earlier --voronoi
+expect_exit 2 "mm1.json: exists and is not quadapt's JSON" lpcvt frame.msh -o v1.msh --voronoi mm1.json
+same_bytes mm1.json case.json
+[ ! -e v1.msh ] || fail "lpcvt wrote v1.msh before refusing --voronoi mm1.json"
+expect_exit 2 "--voronoi writes JSON, not a msh file" lpcvt frame.msh -o v1.msh --voronoi keep.msh
+cmp -s frame.msh keep.msh || fail "--voronoi keep.msh changed keep.msh"
+lpcvt -q frame.msh -o v1.msh --voronoi v1-vor.json --max-iterations 2
+lpcvt -q frame.msh -o v1.msh --voronoi v1-vor.json --max-iterations 2 || fail "--voronoi over its own earlier output refused"
 # all or nothing (exit 2 = nothing written; a CLI audit): OUT.msh.opt that cannot be written is
 # refused before the solve (it was found after OUT.msh had been replaced, the old report left)
 echo OLD > aon.msh
