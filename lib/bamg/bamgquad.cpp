@@ -79,6 +79,8 @@ Mesh bamg_quad(const Frame& fr, const BamgQuadOptions& opt, BamgQuadStats* stats
       FfbamgResult r;
       try {
         r = run_ffbamg(bg, scaled, opt.ffbamg);
+      } catch (const FfbamgNotRunnable&) {
+        throw;  // a missing ffbamg is not the frame's fault: not named with it
       } catch (const ExternalError& e) {
         throw ExternalError(path + ": " + e.what());  // the input named (docs/exit-codes.md)
       }

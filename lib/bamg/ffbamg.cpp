@@ -100,7 +100,7 @@ FfbamgResult run_ffbamg(const InriaMesh& background, const std::vector<Eigen::Ma
   // it would otherwise run on, writing into a directory that is being removed
   const ChildExit ex = run_child(args, co);
   if (ex.spawn_error != 0)
-    throw ExternalError("cannot run '" + exe + "' (FreeFEM's BAMG; Debian package freefem++): " + ex.how());
+    throw FfbamgNotRunnable("cannot run '" + exe + "' (FreeFEM's BAMG; Debian package freefem++): " + ex.how());
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!ex.ok() || !fs::exists(out)) throw ExternalError("ffbamg failed (" + ex.how() + "): " + cause_in(log));
   try {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bamg/inria_mesh.hpp"
+#include "core/error.hpp"
 
 namespace quadapt {
 
@@ -24,6 +25,12 @@ struct FfbamgOptions {
   int smoothing_iterations = 3;      ///< -NbSmooth (BAMG's node smoothing; its default is 3)
 };
 
+/// ffbamg could not be started (not installed, not executable): the machine's problem, not the
+/// input's, so callers that name their input in ffbamg's failures leave this one as it is.
+struct FfbamgNotRunnable : ExternalError {
+  using ExternalError::ExternalError;
+};
+
 struct FfbamgResult {
   InriaMesh mesh;
   double seconds = 0;
@@ -31,8 +38,8 @@ struct FfbamgResult {
 };
 
 /// Runs ffbamg on `background` (triangles; boundary edges with refs) with the per-vertex metric
-/// `metric` (#background vertices SPD tensors). Throws ExternalError when ffbamg is missing,
-/// fails, or writes no mesh (the message includes the tail of its output).
+/// `metric` (#background vertices SPD tensors). Throws FfbamgNotRunnable when ffbamg cannot be
+/// started, ExternalError when it fails, or writes no mesh (the message includes the tail of its output).
 FfbamgResult run_ffbamg(const InriaMesh& background, const std::vector<Eigen::Matrix2d>& metric,
                         const FfbamgOptions& opt = {});
 

@@ -176,6 +176,15 @@ set -e
 grep -q "^bamgquad: $T/frame.msh: ffbamg failed (exit status 1): Err mesh vertices 7 is not in a triangle$" "$T/err_fake" ||
   fail "failing ffbamg: $(cat "$T/err_fake")"
 
+# --- an ffbamg that cannot be started: the machine's problem, not the frame's — one line naming
+# ffbamg and its package, not the frame (it said "frame.msh: cannot run ...": a CLI audit)
+set +e
+QUADAPT_FFBAMG="$T/no-such-ffbamg" bamgquad -q "$T/frame.msh" -o "$T/nob.msh" 2> "$T/err_nob"; rc=$?
+set -e
+[ $rc = 2 ] && [ "$(wc -l < "$T/err_nob")" = 1 ] && [ ! -e "$T/nob.msh" ] || fail "missing ffbamg: exit $rc: $(cat "$T/err_nob")"
+grep -q "^bamgquad: cannot run '$T/no-such-ffbamg' (FreeFEM's BAMG; Debian package freefem++): No such file or directory$" "$T/err_nob" ||
+  fail "missing ffbamg: $(cat "$T/err_nob")"
+
 # --- a count far off the target says so (was exit 0 and silent: 4 cells for 1000 at --edge-factor 1e6)
 bamgquad "$T/frame.msh" -o "$T/ef.msh" --edge-factor 1e6 2> "$T/err_ef" || fail "--edge-factor 1e6: $(cat "$T/err_ef")"
 grep -q "^bamgquad: warning: [0-9]* cells for the frame's target of 1000 (ratio .*) after [0-9] BAMG run(s): --edge-factor far from its default?$" "$T/err_ef" ||
