@@ -105,9 +105,14 @@ OutputBatch::OutputBatch() = default;
 OutputBatch::~OutputBatch() = default;  // uncommitted temporaries are removed by their TempFile
 
 void OutputBatch::add(const std::string& path, const std::function<void(std::ostream&)>& writer, bool binary) {
+  add(resolve_output(path), path, writer, binary);
+}
+
+void OutputBatch::add(const OutputTarget& target, const std::string& path,
+                      const std::function<void(std::ostream&)>& writer, bool binary) {
   if (committed_) throw NumericalError("OutputBatch::add after commit");
   Item it;
-  it.target = resolve_output(path);
+  it.target = target;
   check_not_an_input(path);  // stat follows the links: the same file as target.path
   it.binary = binary;
   if (it.target.kind != OutputTarget::Kind::Regular) {
@@ -153,7 +158,7 @@ void atomic_write(const std::string& path, const std::function<void(std::ostream
     return write_special(t, writer, binary);
   }
   OutputBatch b;
-  b.add(path, writer, binary);
+  b.add(t, path, writer, binary);
   b.commit();
 }
 

@@ -60,6 +60,10 @@ class OutputBatch {
 
  private:
   struct Item;
+  /// add() with its path already resolved (atomic_write resolves it once, to choose streaming)
+  void add(const OutputTarget& target, const std::string& path, const std::function<void(std::ostream&)>& writer,
+           bool binary);
+  friend void atomic_write(const std::string&, const std::function<void(std::ostream&)>&, bool);
   std::vector<Item> items_;
   std::vector<std::function<void()>> after_;
   bool committed_ = false;
