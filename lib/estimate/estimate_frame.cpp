@@ -1,6 +1,7 @@
 #include "estimate/estimate_frame.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <string>
 
@@ -46,13 +47,18 @@ namespace {
 // not follow, would keep investing in it (uncapped, an L-shape loop at p = 3 coarsened the rest
 // of the domain 3x at its step 7 and its error rose 16x; docs/estimate-frame.md).
 constexpr double kMaxRaise = 64;
-// area: |cell area| per cell.
-void raise_by_misfit(const std::vector<double>& area, const EstimateOptions& opt, EstimateResult& r) {
+// area: |cell area| per cell; noise: per cell, the misfit that rounding alone gives (rounding_misfit).
+// A cell whose misfit is at that level tells nothing about the model (u_h may be the polynomial
+// exactly): it takes no part in κ and is never raised. Without this, a field that the model
+// describes exactly had its B raised up to 64x on the cells whose rounding happened to be above
+// the median rounding (a review: 15-19 of 64 cells; B no longer invariant under rotation).
+void raise_by_misfit(const std::vector<double>& area, const std::vector<double>& noise, const EstimateOptions& opt,
+                     EstimateResult& r) {
   const int nc = static_cast<int>(r.B.size());
   const int n = r.p + 1;
   std::vector<double> ratio(nc, 0), positive;
   for (int c = 0; c < nc; ++c) {
-    if (!(r.B[c] > 0)) continue;
+    if (!(r.B[c] > 0) || !(r.misfit[c] > noise[c])) continue;
     const double model = r.B[c] * std::pow(area[c], (opt.q * n + 2) / 2);
     ratio[c] = r.misfit[c] / model;
     positive.push_back(ratio[c]);
@@ -64,7 +70,7 @@ void raise_by_misfit(const std::vector<double>& area, const EstimateOptions& opt
   if (!(kappa > 0)) return;
   for (int c = 0; c < nc; ++c) {
     const double excess = std::min(kMaxRaise, ratio[c] / (opt.observed_floor * kappa));
-    if (!(r.B[c] > 0) || !(excess > 1)) continue;
+    if (!(r.B[c] > 0) || !(r.misfit[c] > noise[c]) || !(excess > 1)) continue;
     r.B[c] *= excess;
     // B ∝ (A1 A2)^(q/2): both coefficients by excess^(1/q) keep ρ and give B · excess
     const double g = std::pow(excess, 1 / opt.q);
@@ -73,6 +79,10 @@ void raise_by_misfit(const std::vector<double>& area, const EstimateOptions& opt
     ++r.cells_raised;
   }
 }
+// What "zero" means for a difference of values of size U fitted by least squares on a patch:
+// about ε U times the fit's conditioning (kRoundingFactor, generous: the patches' Vandermonde
+// systems in scaled coordinates). Used for the noise floor and the observed-error floor.
+constexpr double kRoundingFactor = 1e3;
 }  // namespace
 
 EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const std::string& source) {
@@ -146,16 +156,30 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
   }
   if (failed) throw NumericalError(source.empty() ? what : source + ": " + what);
 
-  // Noise floor: a cell whose degree-(p+1) term changes u by at most direction_floor · max|u|
-  // over the cell (A1 h_k^n), or whose A1 is below direction_floor · max A1, has no meaningful
-  // derivative: A1 = A2 = 0, phi = 0, B = 0, isotropic θ = 0, ρ = 1.
-  double amax = 0, umax = 0;
+  // The size of u that each cell's fit saw: max |u_h| over its patch's nodes (the rounding scale).
+  std::vector<double> cell_umax(nc, 0), patch_umax(nc, 0);
+  const size_t per_cell = static_cast<size_t>(n) * n;
+  for (int c = 0; c < nc; ++c)
+    for (size_t k = 0; k < per_cell; ++k) cell_umax[c] = std::max(cell_umax[c], std::abs(f->values[c * per_cell + k]));
+  for (int c = 0; c < nc; ++c)
+    for (int o : patches[c]) patch_umax[c] = std::max(patch_umax[c], cell_umax[o]);
+  // Noise floor: a cell whose degree-(p+1) term changes u over the cell (A1 h_k^n) by at most
+  // direction_floor · (max u − min u) / 2 — half the oscillation, max|u − c| about the range's
+  // centre c: max|u| for a field symmetric about 0, and u + const gives the same shape (with max|u|
+  // an offset of 1e3 zeroed 252 more cells of a Gaussian: a review) — or by no more than
+  // the rounding of its fit (kRoundingFactor ε max|u_h| over the patch), or whose A1 is below
+  // direction_floor · max A1, has no meaningful derivative: A1 = A2 = 0, phi = 0, B = 0,
+  // isotropic θ = 0, ρ = 1.
+  double amax = 0;
   for (double a : r.A1) amax = std::max(amax, a);
-  for (double v : f->values) umax = std::max(umax, std::abs(v));
+  const auto [umin_it, umax_it] = std::minmax_element(f->values.begin(), f->values.end());
+  const double half_oscillation = 0.5 * (*umax_it - *umin_it);
+  constexpr double eps = std::numeric_limits<double>::epsilon();
 #pragma omp parallel for schedule(static)
   for (int c = 0; c < nc; ++c) {
     const double hk = std::sqrt(area[c]);
-    if (r.A1[c] * std::pow(hk, n) <= opt.direction_floor * umax || r.A1[c] <= opt.direction_floor * amax) {
+    const double zero = std::max(opt.direction_floor * half_oscillation, kRoundingFactor * eps * patch_umax[c]);
+    if (r.A1[c] * std::pow(hk, n) <= zero || r.A1[c] <= opt.direction_floor * amax) {
       // phi too: the direction of a noise term would differ between a field and its mirror image
       r.A1[c] = r.A2[c] = r.phi[c] = 0;
       continue;
@@ -173,7 +197,12 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
     r.theta[c] = s.theta;
     r.rho[c] = s.rho;
   }
-  if (opt.observed_floor > 0) raise_by_misfit(area, opt, r);
+  if (opt.observed_floor > 0) {
+    // the misfit m_K = |K| mean |ũ − u_h|^q that rounding alone gives
+    std::vector<double> noise(nc);
+    for (int c = 0; c < nc; ++c) noise[c] = std::pow(kRoundingFactor * eps * patch_umax[c], opt.q) * area[c];
+    raise_by_misfit(area, noise, opt, r);
+  }
   return r;
 }
 

@@ -37,8 +37,10 @@ struct EstimateOptions {
   /// times its median over the cells, B_K is raised by that excess, at most 64× (docs/estimate-frame.md
   /// *Observed-error floor*): the Taylor model under-predicts singular and unresolved cells.
   double observed_floor = 4;
-  /// Noise floor: cells with A1 h_k^(p+1) <= direction_floor · max|u| (h_k = sqrt(cell area))
-  /// or A1 <= direction_floor · max_k A1 are derivative-free: A1 = A2 = B = 0, θ = 0, ρ = 1.
+  /// Noise floor: cells with A1 h_k^(p+1) <= max(direction_floor · (max u − min u) / 2, 1e3 ε max|u_h|
+  /// over the cell's patch) (h_k = sqrt(cell area)) or A1 <= direction_floor · max_k A1 are
+  /// derivative-free: A1 = A2 = B = 0, θ = 0, ρ = 1. The observed-error floor ignores cells whose
+  /// misfit is at that rounding level, (1e3 ε max|u_h|)^q |K|.
   double direction_floor = 1e-10;
 };
 
