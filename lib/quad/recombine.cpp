@@ -22,6 +22,9 @@ Mesh recombine_to_all_quads(const Mesh& tri_in, const RecombineOptions& opt, Rec
     st.parity_split = make_triangle_count_even(tri);
     qd = blossom_recombine(tri, opt.blossom, &st.blossom);
   }
+  // a boundary vertex in one quad on a smooth part of the boundary (a near-180-degree corner,
+  // which the split keeps and which cannot even be curved): its quad goes back to two triangles
+  st.corners = split_flat_boundary_corners(qd);
   Mesh out = opt.split ? split_to_all_quads(qd) : std::move(qd);
   st.quality = quality_summary(out);
   st.cells_out = out.num_cells();

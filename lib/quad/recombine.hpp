@@ -10,6 +10,7 @@
 // The boundary groups (names and tags) are carried through every step.
 #include "mesh/mesh.hpp"
 #include "quad/blossom.hpp"
+#include "quad/boundary_corners.hpp"
 #include "quad/metric_matching.hpp"
 #include "quad/quality_summary.hpp"
 
@@ -39,6 +40,7 @@ struct RecombineStats {
   bool parity_split = false;         ///< one boundary triangle was split to make the count even
   BlossomStats blossom;              ///< quads / triangles after Blossom
   MetricMatchingStats metric;        ///< quads / triangles after the metric matching
+  BoundaryCornerStats corners;       ///< flat boundary corners found / split away (boundary_corners.hpp)
   int cells_out = 0;                 ///< cells of the result (all quads when split)
   QualitySummary quality;            ///< of the result
 };

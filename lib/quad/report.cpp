@@ -44,6 +44,7 @@ nlohmann::json to_json(const RecombineStats& s) {
             {"wall_triangles", s.metric.wall_triangles},
             {"candidate_pairs", s.metric.candidate_pairs},
             {"mean_metric_quality", s.metric.mean_quality}}},
+          {"flat_boundary_corners", {{"found", s.corners.flat_vertices}, {"split", s.corners.split}}},
           {"cells", s.cells_out},
           {"quality", to_json(s.quality)}};
 }
