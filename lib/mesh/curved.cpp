@@ -1,7 +1,11 @@
 #include "mesh/curved.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <vector>
+
+#include <Eigen/LU>
 
 #include "core/error.hpp"
 
@@ -171,6 +175,86 @@ void elevate_geometric_order(Mesh& m, int q) {
   m.curved.points = std::move(pts);
 }
 
+namespace {
+
+/// Bernstein coefficients (degree n - 1 on [0, 1]) of the values f at the n equispaced points
+/// t_k = k / (n - 1): the inverse of the collocation matrix B_j(t_k) (n <= 2 kMaxGeometricOrder).
+Eigen::MatrixXd bernstein_from_values(int n) {
+  Eigen::MatrixXd V(n, n);
+  for (int k = 0; k < n; ++k) {
+    const double t = n == 1 ? 0 : static_cast<double>(k) / (n - 1);
+    for (int j = 0; j < n; ++j) {
+      double binom = 1;
+      for (int i = 0; i < j; ++i) binom = binom * (n - 1 - i) / (i + 1);
+      V(k, j) = binom * std::pow(t, j) * std::pow(1 - t, n - 1 - j);
+    }
+  }
+  return V.inverse();
+}
+
+/// Halves the tensor Bernstein coefficients B (rows: eta index, columns: xi index) at 1/2 along
+/// xi (dir 0) or eta (dir 1) by de Casteljau: the coefficients of the two halves.
+void halve(const Eigen::MatrixXd& B, int dir, Eigen::MatrixXd& lo, Eigen::MatrixXd& hi) {
+  const Eigen::MatrixXd A = dir == 0 ? B : Eigen::MatrixXd(B.transpose());
+  const int rows = static_cast<int>(A.rows()), n = static_cast<int>(A.cols());
+  Eigen::MatrixXd L(rows, n), H(rows, n);
+  std::vector<double> w(n);
+  for (int r = 0; r < rows; ++r) {
+    for (int j = 0; j < n; ++j) w[j] = A(r, j);
+    for (int level = 0; level < n; ++level) {
+      L(r, level) = w[0];
+      H(r, n - 1 - level) = w[n - 1 - level];
+      for (int j = 0; j + 1 < n - level; ++j) w[j] = 0.5 * (w[j] + w[j + 1]);
+    }
+  }
+  lo = dir == 0 ? L : Eigen::MatrixXd(L.transpose());
+  hi = dir == 0 ? H : Eigen::MatrixXd(H.transpose());
+}
+
+void certify(const Eigen::MatrixXd& B, int depth, JacobianCertificate& r) {
+  const int n = static_cast<int>(B.rows());
+  const double corner = std::min({B(0, 0), B(0, n - 1), B(n - 1, 0), B(n - 1, n - 1)});
+  if (corner <= 0) {  // det J's value at a point of the cell
+    r.positive = false;
+    r.lowest = std::min(r.lowest, corner);
+    return;
+  }
+  r.lowest = std::min(r.lowest, corner);
+  const double low = B.minCoeff();
+  if (low > 0) return;
+  if (depth == kCertifyDepth) {  // undecided: det J within rounding of 0 somewhere
+    r.positive = false;
+    r.lowest = std::min(r.lowest, low);
+    return;
+  }
+  Eigen::MatrixXd a, b;
+  halve(B, depth % 2, a, b);
+  certify(a, depth + 1, r);
+  if (r.positive) certify(b, depth + 1, r);
+}
+
+}  // namespace
+
+JacobianCertificate certify_jacobian(const Mesh& m, int c) {
+  JacobianCertificate r;
+  const int q = m.geometric_order(), n = 2 * q;
+  r.lowest = std::numeric_limits<double>::infinity();
+  if (q < 2 || !m.cells[c].is_quad()) return r;
+  thread_local int cached_n = -1;
+  thread_local Eigen::MatrixXd Vinv;
+  if (cached_n != n) {
+    Vinv = bernstein_from_values(n);
+    cached_n = n;
+  }
+  CellMap G(m, c);
+  Eigen::MatrixXd F(n, n);  // F(j, i) = det J at (xi_i, eta_j)
+  Vec2 t1, t2;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) F(j, i) = G.jacobian(-1 + 2.0 * i / (n - 1), -1 + 2.0 * j / (n - 1), t1, t2);
+  certify(Vinv * F * Vinv.transpose(), 0, r);
+  return r;
+}
+
 ScaledJacobian min_scaled_jacobian(const Mesh& m) {
   ScaledJacobian r;
   const int q = m.geometric_order(), n = 2 * q + 2;
@@ -185,7 +269,11 @@ ScaledJacobian min_scaled_jacobian(const Mesh& m) {
         lo = std::min(lo, d);
         hi = std::max(hi, d);
       }
-    const double s = hi > 0 ? lo / hi : -1;
+    double s = hi > 0 ? lo / hi : -1;
+    if (s > 0 && q >= 2) {  // the samples may miss a fold between them: certify
+      const JacobianCertificate cert = certify_jacobian(m, c);
+      if (!cert.positive) s = std::min(0.0, cert.lowest / hi);
+    }
     if (r.cell < 0 || s < r.min) {
       r.min = s;
       r.cell = c;

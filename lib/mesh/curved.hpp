@@ -76,11 +76,28 @@ void elevate_geometric_order(Mesh& m, int q);
 
 /// Minimum over cells of (min det J) / (max det J) sampled on the (2q+2)^2 equispaced points
 /// of the reference square, corners included (the scaled Jacobian of the map; 1 for a
-/// parallelogram, <= 0 for an invalid cell), and the cell where it occurs.
+/// parallelogram, <= 0 for an invalid cell), and the cell where it occurs. A cell whose samples
+/// are all positive but whose det J is not certified positive (certify_jacobian) gets
+/// certificate.lowest / max det J (<= 0) instead: the samples cannot see a fold between them.
 struct ScaledJacobian {
   double min = 1;
   int cell = -1;
 };
 ScaledJacobian min_scaled_jacobian(const Mesh& m);
+
+/// Whether det J of curved cell c (order q >= 2) is positive on the whole reference square,
+/// certified rather than sampled: det J = x_xi y_eta - x_eta y_xi is a polynomial of degree 2q-1
+/// in each of xi, eta, so its values on a 2q x 2q equispaced grid give its Bernstein
+/// coefficients on [-1, 1]^2 exactly, and det J lies between their minimum and maximum. Where
+/// the minimum coefficient is not positive the square is halved (de Casteljau, alternately in xi
+/// and eta) up to kCertifyDepth times; a sub-square's corner coefficients are det J's values
+/// there. `positive`: every sub-square certified; else `lowest` is det J at a point where it is
+/// <= 0 (or, undecided at the depth limit, the smallest coefficient there: det J ~ 0).
+struct JacobianCertificate {
+  bool positive = true;
+  double lowest = 0;  ///< the smallest corner value (a point of the cell) met; see above when !positive
+};
+JacobianCertificate certify_jacobian(const Mesh& m, int c);
+constexpr int kCertifyDepth = 12;
 
 }  // namespace quadapt

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "mesh/curved.hpp"
 #include "mesh/label.hpp"
 #include "mesh/topology.hpp"
@@ -57,7 +58,11 @@ CellProblem cell_problem(const Mesh& m, int c) {
       return {"non-convex: reflex angle at corner " + corner + " (a quad must be convex)"};
     return {"inverted: negative Jacobian at corner " + corner};
   }
-  if (cell_area(m, c) <= tol) return {"degenerate: zero area"};
+  // a curved map folded through itself has a negative area, not a zero one (it said "zero area")
+  if (const double a = cell_area(m, c); a < -tol)
+    return {"inverted: its curved map folds (signed area " + sci(a) + " < 0)"};
+  else if (a <= tol)
+    return {"degenerate: zero area"};
   for (int k = 0; k < cell.nv; ++k) {
     const Vec2& p = m.nodes[cell.v[k]];
     Vec2 a = m.nodes[cell.v[(k + 1) % cell.nv]] - p;

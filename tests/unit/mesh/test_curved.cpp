@@ -186,3 +186,66 @@ TEST_CASE("curved map: neighbours whose curved edges differ are refused by the D
   m.curved.points[4 * 9 + 2 + 3 * 1] -= Vec2(0.01, 0);
   CHECK_NOTHROW(DGDiscretization(m, one, 2));
 }
+
+TEST_CASE("curved map: a fold between the sample points is found (det J certified by Bernstein bounds)") {
+  // Cell [0, 0.5]^2 at q = 3 with its bottom edge's two inner nodes pushed together along the edge,
+  // to x = 0.25 -+ 0.00556: x(xi) on that edge runs backwards for |xi| < 0.126, so det J < 0 there
+  // (-3.1e-3 on a 401^2 grid) while it is positive at all 8 x 8 sample points (+8.9e-4: a review's
+  // construction; meshquality said 0.70, dgsolve solved it with 27x the error).
+  auto make = [](double spread) {
+    Mesh m = make_structured_quads(1, 1, 0, 0.5, 0, 0.5);
+    elevate_geometric_order(m, 3);
+    m.curved.points[1] = Vec2(0.25 - spread, 0);
+    m.curved.points[2] = Vec2(0.25 + spread, 0);
+    return m;
+  };
+  const Mesh folded = make(0.00556), fine = make(0.05);
+  // the 8 x 8 samples alone: all positive
+  CellMap G(folded, 0);
+  double lo = 1e300;
+  Vec2 t1, t2;
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 8; ++i) lo = std::min(lo, G.jacobian(-1 + 2.0 * i / 7, -1 + 2.0 * j / 7, t1, t2));
+  CHECK(lo > 0);
+  const JacobianCertificate cert = certify_jacobian(folded, 0);
+  CHECK_FALSE(cert.positive);
+  CHECK(cert.lowest < 0);
+  // the witness is det J at a point of the cell: it is below zero there
+  MESSAGE("folded: sampled min " << lo << ", certificate's point value " << cert.lowest);
+  CHECK(min_scaled_jacobian(folded).min <= 0);
+  ValidateOptions v;
+  v.allow_curved = true;
+  try {
+    validate_mesh(folded, "folded.msh", v);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("non-positive Jacobian") != std::string::npos);
+  }
+  // an unfolded cell is certified, and keeps its sampled scaled Jacobian
+  CHECK(certify_jacobian(fine, 0).positive);
+  CHECK(min_scaled_jacobian(fine).min > 0);
+  CHECK_NOTHROW(validate_mesh(fine, "fine.msh", v));
+  // exactness of the certificate's grid: on a disk of every order the certificate agrees with
+  // the samples (valid), and its corner values are det J's
+  for (int q : {2, 3, 4, 6}) {
+    const Mesh d = curved_disk(2, q);
+    for (int c = 0; c < d.num_cells(); ++c) CHECK(certify_jacobian(d, c).positive);
+  }
+}
+
+TEST_CASE("curved map: a cell folded through itself is called inverted, not zero-area") {
+  // q = 2, the bottom edge's middle node pulled past the top edge: signed area -0.0167 (it said
+  // "degenerate: zero area"; a review)
+  Mesh m = make_structured_quads(1, 1, 0, 0.5, 0, 0.5);
+  elevate_geometric_order(m, 2);
+  m.curved.points[1] = Vec2(0.25, 0.8);
+  ValidateOptions v;
+  v.allow_curved = true;
+  try {
+    validate_mesh(m, "fold.msh", v);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("inverted: its curved map folds (signed area -1.667e-02 < 0)") != std::string::npos);
+    MESSAGE(std::string(e.what()));
+  }
+}
