@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--no-edges", no_edges, "Do not draw the cell edges");
   app.add_option("--title", title, "Title above the picture (default: the file and field names; '' for none)");
+  tool.allow_empty_value("--title");
 
   return tool.run(argc, argv, [&] {
     tool.input(in);

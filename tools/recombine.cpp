@@ -38,15 +38,15 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", out, "Output all-quad mesh (.msh); report beside it as .json")->required();
   bool pairing = false;
   app.add_flag("--pairing", pairing,
-               "Use only Blossom's matching: every quad is two input triangles, no node moves or "
-               "disappears (default: Gmsh's topological clean-up and node relocation, checked, with "
-               "the pairing as fall-back)");
+               "Blossom-Quad (--matching blossom) only: use Blossom's matching alone, every quad is two "
+               "input triangles, no node moves or disappears (Blossom's default: Gmsh's topological "
+               "clean-up and node relocation, checked, with the pairing as fall-back)");
   app.add_option("--topology-passes", opt.blossom.optimize_topology,
-                 "Clean-up: Gmsh's topological optimisation passes (Mesh.RecombineOptimizeTopology)")
+                 "Blossom-Quad only: Gmsh's topological optimisation passes (Mesh.RecombineOptimizeTopology)")
       ->capture_default_str()
       ->check(NonNegativeValue);
   app.add_option("--relocation-passes", opt.blossom.smoothing,
-                 "Clean-up: Gmsh's node relocation passes after recombination (Mesh.Smoothing)")
+                 "Blossom-Quad only: Gmsh's node relocation passes after recombination (Mesh.Smoothing)")
       ->capture_default_str()
       ->check(NonNegativeValue);
   std::string matching, frame_path;
@@ -80,9 +80,6 @@ int main(int argc, char** argv) {
     tool.output_mesh(out);
     opt.split = !no_split;
     opt.blossom.gmsh_cleanup = !pairing;
-    tool.option("mode", pairing ? "pairing" : "gmsh-cleanup");
-    tool.option("topology_passes", opt.blossom.optimize_topology);
-    tool.option("relocation_passes", opt.blossom.smoothing);
     tool.option("split", opt.split);
     Mesh tri;
     {
@@ -91,6 +88,12 @@ int main(int argc, char** argv) {
       const bool has_frame = !frame_path.empty() || tri.cell_field("Vinv");
       if (matching.empty()) matching = has_frame ? "metric" : "blossom";
       if (matching == "metric") {
+        // Blossom's options do nothing here: refused, as the metric ones are under Blossom (they
+        // were ignored, the report naming a mode that never ran: a docs audit)
+        for (const char* o : {"--pairing", "--topology-passes", "--relocation-passes"})
+          if (app.count(o))
+            throw InputError("", std::string(o) + " applies to Blossom-Quad only (--matching blossom); the metric "
+                                                  "matching, the default with a frame, keeps every node and has no clean-up");
         if (!frame_path.empty()) {
           tool.input(frame_path);
           opt.with_frame(sample_frame_checked(tool, read_frame(frame_path), tri, in, frame_path));
@@ -107,6 +110,15 @@ int main(int argc, char** argv) {
       }
     }
     tool.option("matching", matching);
+    if (matching == "blossom") {  // Blossom's own options: only where they act
+      tool.option("mode", pairing ? "pairing" : "gmsh-cleanup");
+      tool.option("topology_passes", opt.blossom.optimize_topology);
+      tool.option("relocation_passes", opt.blossom.smoothing);
+    } else {
+      tool.report()["options"].erase("pairing");
+      tool.report()["options"].erase("topology_passes");
+      tool.report()["options"].erase("relocation_passes");
+    }
     if (matching == "metric") tool.option("min_quality", opt.metric.min_quality);
     RecombineStats st;
     Mesh q;

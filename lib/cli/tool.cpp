@@ -251,8 +251,11 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   }
   // An option given as "" (`--report ""`, `--voronoi ""`) is refused, not taken for "not given"
   // (it wrote the default report, or nothing at all, with exit 0).
+  // Options whose "" means something (meshplot's `--title ''`: no title) are declared with
+  // allow_empty_value.
   for (const CLI::Option* opt : app_.get_options()) {
     if (opt->get_type_size() == 0 || opt->count() == 0) continue;
+    if (std::find(may_be_empty_.begin(), may_be_empty_.end(), opt->get_name()) != may_be_empty_.end()) continue;
     for (const std::string& r : opt->results())
       if (r.empty()) {
         std::cerr << name_ << ": " << opt->get_name() << ": empty value \"\" (give a file name or value)" << std::endl;

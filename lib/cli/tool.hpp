@@ -70,6 +70,10 @@ class Tool {
   /// replaces its own earlier output, never a file of the user's.
   void output_json(const std::string& path, const std::string& what);
 
+  /// An option (its long name, e.g. "--title") whose empty value "" is meaningful: not refused
+  /// as "empty value" (every other option given as "" is, exit 2).
+  void allow_empty_value(const std::string& option) { may_be_empty_.push_back(option); }
+
   /// How a tool reads an input mesh: read_valid_msh(path, v) (exit 2 on what it refuses), then
   /// the checks that only warn (mesh/near_boundary.hpp: boundary edges lying on other boundary
   /// edges). Each warning is logged as "warning: PATH: ..." (not with -q, like every log line)
@@ -127,6 +131,7 @@ class Tool {
   nlohmann::json report_;
   std::vector<std::string> inputs_;
   std::vector<std::string> outputs_;
+  std::vector<std::string> may_be_empty_;  ///< allow_empty_value's options
   std::string report_path_;
   bool report_decided_ = false;
   bool report_explicit_ = false;  ///< --report given (or set_report_path), not beside the output

@@ -36,7 +36,7 @@ run() {
   local tag=$1 n=$2
   mkdir -p "$tag"
   lpcvt -q frame.msh -o "$tag/tri-$tag.msh" --seed 1 --threads "$n"
-  recombine -q "$tag/tri-$tag.msh" -o "$tag/quad-$tag.msh" --pairing --threads "$n"
+  recombine -q "$tag/tri-$tag.msh" -o "$tag/quad-$tag.msh" --matching blossom --pairing --threads "$n"
   recombine -q "$tag/tri-$tag.msh" -o "$tag/metric-$tag.msh" --threads "$n"  # the default mode (the loop uses it)
   quadsmooth -q "$tag/quad-$tag.msh" --frame frame.msh -o "$tag/smooth-$tag.msh" --threads "$n"
   if command -v ffbamg >/dev/null; then bamgquad -q frame.msh -o "$tag/bamg-$tag.msh" --threads "$n"; fi

@@ -105,4 +105,9 @@ expect_fail "unknown glyph" f.msh --field Vinv --glyph arrow -o bad4.svg
 printf '$MeshFormat\n4.1 0 8\n' > broken.msh
 expect_fail "broken.msh" broken.msh -o bad5.svg
 for f in bad1.svg bad2.jpg bad3.svg bad4.svg bad5.svg; do [ ! -e "$f" ] || fail "$f written despite the error"; done
+# --title '' is documented as "no title" (it was refused as an empty value: a docs audit)
+meshplot -q sq.msh --title '' -o notitle.svg || fail "--title '' refused"
+meshplot -q sq.msh -o titled.svg
+grep -q '<text' titled.svg || fail "the default picture has no title text"
+[ "$(grep -c '<text' notitle.svg)" -lt "$(grep -c '<text' titled.svg)" ] || fail "--title '' still drew a title"
 echo "meshplot CLI: all checks passed"

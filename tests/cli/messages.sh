@@ -167,6 +167,15 @@ lpcvt -q "$T/f.msh" -o "$T/t.msh" && recombine -q "$T/t.msh" -o "$T/q.msh"
 rc=0; msg=$(recombine "$T/t.msh" -o "$T/qb.msh" --matching blossom --interior-bonus 0.2 2>&1) || rc=$?
 [ $rc -eq 2 ] && grep -q -- "--interior-bonus applies to the metric matching only" <<<"$msg" || fail "recombine --matching blossom --interior-bonus: exit $rc: $msg"
 [ ! -e "$T/qb.msh" ] || fail "recombine wrote an output after refusing --interior-bonus"
+# ... and the reverse: Blossom's options under the metric matching (they were ignored, the report
+# naming a mode that never ran: a docs audit)
+for o in --pairing "--topology-passes 0" "--relocation-passes 2"; do
+  rc=0; msg=$(recombine "$T/t.msh" -o "$T/qm.msh" $o 2>&1) || rc=$?
+  [ $rc -eq 2 ] && grep -q -- "${o%% *} applies to Blossom-Quad only (--matching blossom)" <<<"$msg" || fail "recombine $o (metric): exit $rc: $msg"
+  [ ! -e "$T/qm.msh" ] || fail "recombine wrote an output after refusing $o"
+done
+python3 -c "import json,sys; o=json.load(open(sys.argv[1]))['options']; assert 'mode' not in o and 'topology_passes' not in o, o" "$T/q.json" ||
+  fail "the metric matching's report names Blossom's mode"
 rc=0; msg=$(quadsmooth "$T/q.msh" -o "$T/s.msh" --corner-metric cell 2>&1) || rc=$?
 [ $rc -eq 2 ] && grep -q -- "--corner-metric applies to the shape fit only" <<<"$msg" || fail "quadsmooth --corner-metric without --frame: exit $rc: $msg"
 rc=0; msg=$(quadsmooth "$T/q.msh" -o "$T/s.msh" --walls fixed 2>&1) || rc=$?
