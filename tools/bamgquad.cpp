@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
                                {"max_distance", ss.max_distance}, {"max_interior_move", ss.max_interior_move}};
     }
     auto& rep = tool.report();
-    rep["frame_cells"] = st.frame_cells;
+    rep["background_cells"] = st.frame_cells;  // the frame file's cells (lpcvt's frame_cells is the count the frame asks for)
     rep["target_complexity"] = st.target_complexity;
     rep["cells"] = st.cells;
     rep["complexity_ratio"] = st.complexity_ratio;

@@ -2,6 +2,7 @@
 // (thesis §5.2, eqs. 5.8-5.16; docs/design.md §4). See docs/estimate-frame.md.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include "case/expression.hpp"
@@ -61,8 +62,15 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--observed-floor", opt.observed_floor,
                  "Raise B where the reconstruction's misfit exceeds TAU x its median ratio to the model "
-                 "(0 = off; with --model thesis, 0 gives the thesis's eqs. 5.9-5.16 exactly)")
-      ->check(CLI::Number)
+                 "(0 = off, else >= 1; with --model thesis, 0 gives the thesis's eqs. 5.9-5.16 exactly)")
+      ->check(CLI::Validator(
+          [](std::string& s) {
+            char* end = nullptr;
+            const double v = std::strtod(s.c_str(), &end);
+            if (end == s.c_str() || *end != '\0') return std::string("not a number: ") + s;
+            return v == 0 || v >= 1 ? std::string() : std::string("must be 0 (off) or >= 1, got ") + s;
+          },
+          "{0} U [1, inf)", "0 or >= 1"))
       ->capture_default_str();
   auto* ex = app.add_option("--exact", exact, "Use the GLL interpolant of this expression in x, y instead of the field");
   auto* pe = app.add_option("-p,--degree", p_exact, "DG degree P of the --exact interpolant (" + degree_range_text() + ")");

@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   tool.app().add_flag("--straight-fallback", fallback, "With --order >= 2: a cell that folds when curved keeps its "
                       "boundary edges straight (end nodes on the curve; reported as straight_edges) instead of the error");
   tool.app().add_option("--jitter", jitter.fraction, "Move every interior node at random by at most this fraction of "
-                        "its shortest edge, in (0, 0.45] (straight-sided meshes; fields are dropped)")
+                        "its shortest edge, in [0, 0.45]; 0 = no move (straight-sided meshes; fields are dropped)")
       ->check(CLI::Range(0.0, 0.45));
   tool.app().add_option("--seed", jitter.seed, "Random seed of --jitter")->capture_default_str();
   return tool.run(argc, argv, [&] {

@@ -48,7 +48,7 @@ nlohmann::json typed_option_value(const CLI::Option& opt, const std::vector<std:
     } else if (integer) {
       const long long v = std::strtoll(t.c_str(), &end, 10);
       if (end != t.c_str() && *end == '\0') return v;
-    } else if (opt.get_type_size() == 0) {
+    } else if (opt.get_type_size() == 0 || opt.get_expected_min() == 0) {  // a flag (CLI11 sets either)
       if (t == "true" || t == "1" || t.empty()) return true;
       if (t == "false" || t == "0") return false;
     }

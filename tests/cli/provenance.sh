@@ -56,6 +56,11 @@ assert sad["options"]["init"] == "uniform" and sad["options"]["precondition"] is
 # mode-dependent defaults are recorded as the mode's (gradation was missing unless given: a CLI audit)
 assert tri["options"]["gradation"] == 2 and sad["options"]["gradation"] == 0, (tri["options"], sad["options"])
 assert sol["options"]["degree"] == 1, sol["options"]
+# flags are booleans, given or not (a flag given was the string "true": a docs audit); lpcvt's
+# --initial records that the count is not made exact
+assert quad["options"]["quiet"] is True and tri["options"]["strict"] is False if "strict" in tri["options"] else True, quad["options"]
+assert sad["options"]["quiet"] is True and sad["options"]["exact_count"] is False, sad["options"]
+assert tri["options"]["exact_count"] is True, tri["options"]
 print("provenance: options typed, once each")
 PY
 # without .git (a release tarball): the generator still writes a source, with commit "unknown"
