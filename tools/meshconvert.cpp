@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
                                   {"max_sagitta", st.max_sagitta}, {"max_blend", st.max_blend},
                                   {"max_distance", st.max_distance},
                                   {"min_scaled_jacobian", st.min_scaled_jacobian}, {"blend", st.blend},
-                                  {"straight_edges", st.straight_edges}, {"hanging_nodes", st.hanging},
+                                  {"straight_edges", st.straight_edges}, {"junction_edges", st.junction_edges}, {"hanging_nodes", st.hanging},
                                   {"max_stretch", st.max_stretch}};
       // the fallback keeps the mesh usable but its boundary off the curve: said, not only counted
       // (the loop's curving step passes --straight-fallback; a review found 8-18 edges left straight,

@@ -106,6 +106,40 @@ std::vector<double> edge_parameters(const BoundaryGeometry& g, int k, double ta,
   return params(a1);
 }
 
+// The q - 1 interior control points of a boundary edge a-b whose ends lie on two different curves
+// ka, kb of `group` that meet at a shared vertex V with one tangent line (G1: a circle made of
+// arcs): at equal arc-length steps along a -> V -> b, each curve's arc length taken as its
+// parameter length times its speed |c'| at V (exact for circles and lines). Empty when a and b
+// are not so placed (then the edge is refused: a corner of the geometry is not a node).
+std::vector<Vec2> across_junction(const BoundaryGeometry& g, const std::vector<int>& group, const Vec2& a,
+                                  const Vec2& b, int q, double len) {
+  int ka = -1, kb = -1;
+  double ta = 0, tb = 0;
+  const Vec2 pa = g.closest_point(group, a, &ka, &ta), pb = g.closest_point(group, b, &kb, &tb);
+  if (ka < 0 || kb < 0 || ka == kb || (pa - a).norm() > 1e-9 * len || (pb - b).norm() > 1e-9 * len) return {};
+  const GeometryCurve &ca = g.curves()[ka], &cb = g.curves()[kb];
+  if (ca.closed() || cb.closed()) return {};
+  for (int ea = 0; ea < 2; ++ea)
+    for (int eb = 0; eb < 2; ++eb) {
+      if (ca.ends[ea] != cb.ends[eb]) continue;
+      const double tva = ea == 0 ? ca.t0 : ca.t1, tvb = eb == 0 ? cb.t0 : cb.t1;
+      const Vec2 da = g.derivative(ka, tva), db = g.derivative(kb, tvb);
+      const double sa = da.norm(), sb = db.norm();
+      // one tangent line at V (the curves leave V in opposite directions): a smooth junction
+      if (!(sa > 0 && sb > 0) || std::abs(da.x() * db.y() - da.y() * db.x()) > 1e-6 * sa * sb) continue;
+      const double la = std::abs(tva - ta) * sa, lb = std::abs(tb - tvb) * sb;  // arc lengths a -> V, V -> b
+      if (!(la > 0 && lb > 0)) continue;
+      std::vector<Vec2> pts;
+      for (int i = 1; i < q; ++i) {
+        const double s = (la + lb) * i / q;
+        pts.push_back(s <= la ? g.point(ka, ta + (tva > ta ? 1 : -1) * s / sa)
+                              : g.point(kb, tvb + (tb > tvb ? 1 : -1) * (s - la) / sb));
+      }
+      return pts;
+    }
+  return {};
+}
+
 }  // namespace
 
 CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const std::string& path, bool fallback,
@@ -138,24 +172,33 @@ CurveStats curve_boundary_cells(Mesh& m, const BoundaryGeometry& g, int q, const
     const auto& cv = g.curves()[k];
     double ta = g.closest_parameter(k, a), tb = g.closest_parameter(k, b);
     const double len = (b - a).norm();
-    if ((g.point(k, ta) - a).norm() > 1e-9 * len || (g.point(k, tb) - b).norm() > 1e-9 * len)
-      throw InputError(path, "boundary edge " + point_text(a) + " - " + point_text(b) +
-                                 " does not lie on one curve of " + g.source() +
-                                 " (a corner of the geometry is not a node of the mesh)");
-    if (cv.closed()) {  // the short way round
-      const double P = cv.t1 - cv.t0;
-      if (tb - ta > 0.5 * P) tb -= P;
-      if (ta - tb > 0.5 * P) tb += P;
-    } else {  // exact corners
-      if (ta == cv.t0 || ta == cv.t1)
-        ta = (g.point(k, cv.t0) - a).norm() < (g.point(k, cv.t1) - a).norm() ? cv.t0 : cv.t1;
-      if (tb == cv.t0 || tb == cv.t1)
-        tb = (g.point(k, cv.t0) - b).norm() < (g.point(k, cv.t1) - b).norm() ? cv.t0 : cv.t1;
+    std::vector<Vec2> mid;  // the q - 1 interior control points
+    if ((g.point(k, ta) - a).norm() > 1e-9 * len || (g.point(k, tb) - b).norm() > 1e-9 * len) {
+      // across a smooth junction of two curves of the same group (a circle drawn as four arcs,
+      // whose junction the mesh need not have as a node: BAMG drops it), else refused
+      mid = across_junction(g, curves[e.group], a, b, q, len);
+      if (mid.empty())
+        throw InputError(path, "boundary edge " + point_text(a) + " - " + point_text(b) +
+                                   " does not lie on one curve of " + g.source() +
+                                   " (a corner of the geometry is not a node of the mesh)");
+      ++st.junction_edges;
     }
-    double alpha = 0;
-    const std::vector<double> t = edge_parameters(g, k, ta, tb, q, nodes == BoundaryNodes::Area, alpha);
-    st.max_stretch = std::max(st.max_stretch, std::abs(alpha));
-    const std::vector<Vec2> mid = g.points(k, t);
+    if (mid.empty()) {  // on one curve
+      if (cv.closed()) {  // the short way round
+        const double P = cv.t1 - cv.t0;
+        if (tb - ta > 0.5 * P) tb -= P;
+        if (ta - tb > 0.5 * P) tb += P;
+      } else {  // exact corners
+        if (ta == cv.t0 || ta == cv.t1)
+          ta = (g.point(k, cv.t0) - a).norm() < (g.point(k, cv.t1) - a).norm() ? cv.t0 : cv.t1;
+        if (tb == cv.t0 || tb == cv.t1)
+          tb = (g.point(k, cv.t0) - b).norm() < (g.point(k, cv.t1) - b).norm() ? cv.t0 : cv.t1;
+      }
+      double alpha = 0;
+      const std::vector<double> t = edge_parameters(g, k, ta, tb, q, nodes == BoundaryNodes::Area, alpha);
+      st.max_stretch = std::max(st.max_stretch, std::abs(alpha));
+      mid = g.points(k, t);
+    }
     std::vector<Vec2> pts{a};
     pts.insert(pts.end(), mid.begin(), mid.end());
     pts.push_back(b);

@@ -47,6 +47,7 @@ struct CurveStats {
   double min_scaled_jacobian = 1; ///< of the result (1 for q = 1)
   int worst_cell = -1;
   int straight_edges = 0;         ///< boundary edges left straight (fallback)
+  int junction_edges = 0;         ///< boundary edges across a smooth junction of two curves of one group
   std::string blend;              ///< "transfinite" (cells' own) or "smooth" (across cells)
   bool hanging = false;           ///< the mesh has 2:1 hanging nodes (transfinite blend only)
   double max_stretch = 0;         ///< BoundaryNodes::Area: largest |alpha| over the edges
