@@ -114,6 +114,7 @@ int main(int argc, char** argv) {
       const SnapStats ss = snap_to_geometry(q, *g, in);
       tool.report()["snap"] = {{"boundary_nodes", ss.boundary_nodes}, {"moved", ss.moved}, {"max_move", ss.max_move},
                                {"max_distance", ss.max_distance}, {"max_interior_move", ss.max_interior_move}};
+      for (const std::string& w : ss.warnings) tool.warn(in + ": " + w);
     }
     auto& rep = tool.report();
     rep["background_cells"] = st.frame_cells;  // the frame file's cells (lpcvt's frame_cells is the count the frame asks for)

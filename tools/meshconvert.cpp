@@ -112,6 +112,7 @@ int main(int argc, char** argv) {
                                   {"min_scaled_jacobian", st.min_scaled_jacobian}, {"blend", st.blend},
                                   {"straight_edges", st.straight_edges}, {"junction_edges", st.junction_edges}, {"hanging_nodes", st.hanging},
                                   {"max_stretch", st.max_stretch}};
+      for (const std::string& w : st.snap.warnings) tool.warn(in + ": " + w);
       // the fallback keeps the mesh usable but its boundary off the curve: said, not only counted
       // (the loop's curving step passes --straight-fallback; a review found 8-18 edges left straight,
       // nodes 4.5e-3 off the circle, and nothing in warnings.txt)

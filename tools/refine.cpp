@@ -84,6 +84,7 @@ int main(int argc, char** argv) {
       const SnapStats ss = snap_to_geometry(r, *g, in, s.hanging_after == 0);
       tool.report()["snap"] = {{"boundary_nodes", ss.boundary_nodes}, {"moved", ss.moved}, {"max_move", ss.max_move},
                                {"max_distance", ss.max_distance}, {"max_interior_move", ss.max_interior_move}};
+      for (const std::string& w : ss.warnings) tool.warn(in + ": " + w);
     }
     auto& rep = tool.report();
     rep["cells_before"] = s.cells_before;

@@ -51,6 +51,12 @@ SnapStats snap_once(Mesh& m, const BoundaryGeometry& g, const std::string& path,
   }
   SnapStats s;
   const std::vector<Vec2> before = m.nodes;
+  // per group: nodes already on its curves, nodes, the largest move relative to the edge at the node
+  std::vector<int> group_on(m.groups.size(), 0), group_nodes(m.groups.size(), 0);
+  std::vector<double> group_rel(m.groups.size(), 0), group_move(m.groups.size(), 0);
+  std::map<int, int> node_group;
+  for (const auto& e : m.boundary)
+    for (int v : e.v) node_group.emplace(v, e.group);
   for (auto& [v, cs] : node_curves) {
     ++s.boundary_nodes;
     int k = -1;
@@ -62,8 +68,21 @@ SnapStats snap_once(Mesh& m, const BoundaryGeometry& g, const std::string& path,
                                  ": the mesh is not a mesh of that geometry");
     if (d > 0) ++s.moved;
     s.max_move = std::max(s.max_move, d);
+    const int grp = node_group[v];
+    ++group_nodes[grp];
+    if (d <= 1e-9 * node_edge[v]) ++group_on[grp];
+    if (d / node_edge[v] > group_rel[grp]) {
+      group_rel[grp] = d / node_edge[v];
+      group_move[grp] = d;
+    }
     m.nodes[v] = p;
   }
+  for (size_t grp = 0; grp < m.groups.size(); ++grp)
+    if (group_nodes[grp] >= 3 && group_on[grp] == 0 && group_rel[grp] > 0.05)
+      s.warnings.push_back("none of the " + std::to_string(group_nodes[grp]) + " nodes of boundary '" + m.groups[grp].name +
+                           "' lay on its curves of " + g.source() + " (moved by up to " + sci(group_move[grp]) + ", " +
+                           std::to_string(static_cast<int>(std::lround(100 * group_rel[grp]))) +
+                           " % of the shortest boundary edge there): is the mesh one of that geometry's domain?");
   if (interior == Interior::Parent) {
     // a split parent's centre C follows its Coons map: the children of a quad (triangle) parent
     // around a mid-edge node M share M and C, and C (valence 4, resp. 3) moves by 1/2 (2/3) of M's move

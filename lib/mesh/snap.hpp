@@ -3,6 +3,7 @@
 // polygon of the domain (BAMG's, refine's new mid-edge nodes, recombine's split points) gets its
 // boundary nodes projected onto the geometry's curves of the same name.
 #include <string>
+#include <vector>
 
 #include "mesh/geometry.hpp"
 #include "mesh/mesh.hpp"
@@ -15,6 +16,12 @@ struct SnapStats {
   double max_move = 0;      ///< largest distance moved
   double max_distance = 0;  ///< after snapping: largest distance of a boundary node to its curve
   double max_interior_move = 0;  ///< largest move of an interior node (the blend)
+  /// A boundary group none of whose nodes lay on its curves before the snap, moved by more than
+  /// 5 % of the shortest boundary edge somewhere: a mesh of G's domain has its polygon's vertices
+  /// on the curves (the start mesh, the frame's polygon that BAMG keeps, refine's old nodes), a mesh
+  /// of another domain (the annulus scaled by 1.1: every node moved, by up to 26 % of an edge) has
+  /// none. One message per such group (the tools warn with it).
+  std::vector<std::string> warnings;
 };
 
 /// The geometry's curves of each boundary group of m (by name). Throws InputError(path, ...)
