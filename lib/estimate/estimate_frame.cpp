@@ -6,11 +6,13 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "estimate/directional.hpp"
 #include "estimate/error_model.hpp"
 #include "estimate/polynomial_model.hpp"
 #include "estimate/reconstruct.hpp"
 #include "fem/basis.hpp"
+#include "mesh/label.hpp"
 #include "mesh/topology.hpp"
 
 namespace quadapt {
@@ -197,6 +199,14 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
     r.theta[c] = s.theta;
     r.rho[c] = s.rho;
   }
+  // a field whose derivatives overflow the model (u = 1e300 x^3): named here with the input and
+  // the cause, not later as an output that refuses a non-finite field (a review)
+  for (int c = 0; c < nc; ++c)
+    if (!std::isfinite(r.B[c]) || !std::isfinite(r.A1[c]) || !std::isfinite(r.model_A1[c]))
+      throw NumericalError((source.empty() ? std::string() : source + ": ") + "the error model overflows in " +
+                           cell_label(sol, c) + " (A1 = " + sci(r.A1[c]) + ", B = " + sci(r.B[c]) +
+                           "): the field's degree-" + std::to_string(n) + " derivatives are beyond double precision; "
+                           "scale u down (the frame does not depend on u's scale)");
   if (opt.observed_floor > 0) {
     // the misfit m_K = |K| mean |ũ − u_h|^q that rounding alone gives
     std::vector<double> noise(nc);

@@ -52,6 +52,12 @@ set +e
 estimate-frame -q "$T/sq16.msh" --exact x -p 1 -o "$T/m.msh" --observed-floor 0.5 2>"$T/err"; rc=$?
 set -e
 [ $rc = 2 ] && grep -q -- "--observed-floor: must be 0 (off) or >= 1, got 0.5" "$T/err" && [ ! -e "$T/m.msh" ] || fail "--observed-floor 0.5: exit $rc, $(cat "$T/err")"
+# a field whose derivatives overflow: the input and the cause named (it named the output and "B not finite")
+set +e
+estimate-frame -q "$T/sq16.msh" --exact "1e300*x^3" -p 2 -o "$T/ov.msh" 2>"$T/err"; rc=$?
+set -e
+[ $rc = 2 ] && grep -q "sq16.msh: the error model overflows in cell 1 .*beyond double precision" "$T/err" && [ ! -e "$T/ov.msh" ] ||
+  fail "overflowing field: exit $rc, $(cat "$T/err")"
 estimate-frame --help > "$T/help.txt"  # to a file: grep -q closing a pipe early fails it under pipefail
 grep -q -- "--model" "$T/help.txt" && grep -q -- "--observed-floor" "$T/help.txt" || fail "--help does not list --model, --observed-floor"
 
