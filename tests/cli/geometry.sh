@@ -135,6 +135,27 @@ done
 # 8 edges straight (nodes 4.5e-3 off the circle) and the error rose 6x at step 1, silently.
 # recombine now splits such quads back into two triangles: no straight edge, the error falls.
 AG="$S/examples/geometry/annulus.geo"
+# map_nodes IN OUT "X" "Y": OUT is IN (MSH 4.1, canonical) with every node (x, y) -> (X, Y)
+map_nodes() {
+  python3 - "$1" "$2" "$3" "$4" <<'PY'
+import math, sys
+L = open(sys.argv[1]).read().split("\n"); i = L.index("$Nodes"); nb = int(L[i + 1].split()[0]); j = i + 2
+for _ in range(nb):
+    n = int(L[j].split()[3])
+    for k in range(n):
+        x, y, z = (float(v) for v in L[j + 1 + n + k].split())
+        L[j + 1 + n + k] = "%.17g %.17g %.17g" % (eval(sys.argv[3]), eval(sys.argv[4]), z)
+    j += 1 + 2 * n
+open(sys.argv[2], "w").write("\n".join(L))
+PY
+}
+on_annulus() {  # on_annulus MESH WHAT: every inner and outer node on its circle to 1e-12
+  for grp in "outer 2" "inner 1"; do
+    set -- "$1" "$2" $grp
+    python3 "$S/scripts/curved/check_boundary.py" "$1" --group $3 --circle 0 0 $4 --max 1e-12 \
+      >"$T/on.json" || fail "$2: $3 nodes off the circle: $(cat "$T/on.json")"
+  done
+}
 gmsh -2 -v 0 -order 1 -setnumber N 4 "$AG" -o "$T/ann-g.msh"
 meshconvert -q "$T/ann-g.msh" --require quads -o "$T/ann.msh"
 make -s -f "$S/Makefile.cases" loop CASE="$S/examples/cases/annulus.json" MESH="$T/ann.msh" P=3 METHOD=lpcvt STEPS=1 \
@@ -150,53 +171,20 @@ assert c["straight_edges"] == 0 and c["min_scaled_jacobian"] > 0.05, c  # measur
 e = [float(r["l2_error"]) for r in csv.DictReader(open(d + "/convergence.csv"))]
 assert e[1] < 0.5 * e[0], e  # measured 2.72e-3 -> 6.89e-4 (before: -> 1.60e-2)
 PY
-for grp in "outer 2" "inner 1"; do
-  set -- $grp
-  python3 "$S/scripts/curved/check_boundary.py" "$T/ann-loop/step-1/mesh.msh" --group $1 --circle 0 0 $2 --max 1e-12 \
-    >"$T/on.json" || fail "annulus step 1: $1 nodes off the circle: $(cat "$T/on.json")"
-done
+on_annulus "$T/ann-loop/step-1/mesh.msh" "annulus step 1"
 # --- an edge across a smooth junction of one curve's arcs (a review: the BAMG annulus loop stopped in
 # step 2, "does not lie on one curve ... a corner of the geometry is not a node", at (-2, 0) where two
 # of 'outer''s four arcs meet tangentially and BAMG had kept no node): the annulus mesh turned by
 # 10 degrees has every junction (4 on each circle) inside an edge; curved to order 3 on the true circles
-python3 - "$T/ann.msh" "$T/ann-turned.msh" <<'PY'
-import math, sys
-L = open(sys.argv[1]).read().split("\n"); out = []; i = 0
-c, s = math.cos(math.radians(10)), math.sin(math.radians(10))
-while i < len(L):
-    out.append(L[i])
-    if L[i] == "$Nodes":
-        nb = int(L[i + 1].split()[0]); out.append(L[i + 1]); i += 2
-        for _ in range(nb):
-            n = int(L[i].split()[3]); out.extend(L[i:i + 1 + n]); i += 1 + n
-            for k in range(n):
-                x, y, z = (float(v) for v in L[i + k].split())
-                out.append("%.17g %.17g %.17g" % (c * x - s * y, s * x + c * y, z))
-            i += n
-        continue
-    i += 1
-open(sys.argv[2], "w").write("\n".join(out))
-PY
+map_nodes "$T/ann.msh" "$T/ann-turned.msh" "math.cos(math.radians(10)) * x - math.sin(math.radians(10)) * y" \
+  "math.sin(math.radians(10)) * x + math.cos(math.radians(10)) * y"
 meshconvert -q "$T/ann-turned.msh" --geometry "$AG" --order 3 -o "$T/ann-j.msh" || fail "an edge across the arcs' junction refused"
 python3 -c "import json,sys; c=json.load(open(sys.argv[1]))['curving']; assert c['junction_edges'] == 8 and c['straight_edges'] == 0 and c['max_distance'] < 1e-12, c" "$T/ann-j.json" ||
   fail "junction edges: $(cat "$T/ann-j.json")"
-for grp in "outer 2" "inner 1"; do
-  set -- $grp
-  python3 "$S/scripts/curved/check_boundary.py" "$T/ann-j.msh" --group $1 --circle 0 0 $2 --max 1e-12 \
-    >"$T/on.json" || fail "junction edges: $1 nodes off the circle: $(cat "$T/on.json")"
-done
+on_annulus "$T/ann-j.msh" "junction edges"
 # --- a mesh of another domain within half an edge of the curves (the annulus scaled by 1.1, every node
 # moved by 23 % of its edge) was snapped without a word (a review): now a warning per boundary
-python3 - "$T/ann.msh" "$T/ann-scaled.msh" <<'PY'
-import sys
-L = open(sys.argv[1]).read().split("\n"); i = L.index("$Nodes"); nb = int(L[i + 1].split()[0]); j = i + 2
-for _ in range(nb):
-    n = int(L[j].split()[3])
-    for k in range(n):
-        x, y, z = (float(v) for v in L[j + 1 + n + k].split()); L[j + 1 + n + k] = "%r %r %r" % (1.1 * x, 1.1 * y, z)
-    j += 1 + 2 * n
-open(sys.argv[2], "w").write("\n".join(L))
-PY
+map_nodes "$T/ann.msh" "$T/ann-scaled.msh" "1.1 * x" "1.1 * y"
 meshconvert "$T/ann-scaled.msh" --geometry "$AG" --order 2 -o "$T/sc.msh" 2>"$T/sc.err" || fail "scaled annulus: $(cat "$T/sc.err")"
 [ "$(grep -c "warning: .*none of the 16 nodes of boundary '\(inner\|outer\)' lay on its curves" "$T/sc.err")" = 2 ] ||
   fail "scaled annulus: no warning per boundary: $(cat "$T/sc.err")"
