@@ -163,12 +163,10 @@ int main(int argc, char** argv) {
     // a start count of its own is the thesis's procedure: split/merge finds the count, which is then
     // not set to the request (it was silent: 70 points for 107 asked, "converged"; a docs audit)
     const bool exact = opt.exact_count && opt.initial_points < 0;
-    if (opt.exact_count && !exact)
-      tool.log(initial >= 0 ? "--initial " + std::to_string(initial) +
-                                  ": the point count is left to split/merge (the thesis's procedure), not set to the "
-                                  "request; without --initial it is exact"
-                            : "--analytic with a random start: the point count is left to split/merge (the thesis's "
-                              "procedure)");
+    if (initial >= 0 && !no_exact && !analytic_mode)
+      tool.log("--initial " + std::to_string(initial) +
+               ": the point count is left to split/merge (the thesis's procedure), not set to the request; "
+               "without --initial it is exact");
     tool.option("exact_count", exact);
     if (!cells_kind.empty()) job.metric_cells = cells_kind == "metric";
     const auto log = [&](const std::string& s) { tool.log(s); };

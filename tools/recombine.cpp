@@ -114,6 +114,7 @@ int main(int argc, char** argv) {
       tool.option("mode", pairing ? "pairing" : "gmsh-cleanup");
       tool.option("topology_passes", opt.blossom.optimize_topology);
       tool.option("relocation_passes", opt.blossom.smoothing);
+      for (const char* k : {"min_quality", "pair_bonus", "interior_bonus"}) tool.report()["options"].erase(k);
     } else {
       tool.report()["options"].erase("pairing");
       tool.report()["options"].erase("topology_passes");

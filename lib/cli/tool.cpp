@@ -274,8 +274,9 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
     auto res = opt->results();
     if (res.empty()) {
       const std::string def = opt->get_default_str();
-      if (def.empty()) continue;
-      res = {def};
+      const bool flag = opt->get_type_size() == 0 || opt->get_expected_min() == 0;
+      if (def.empty() && !flag) continue;  // an option without a default, not given: absent
+      res = {def.empty() ? std::string("false") : def};  // a flag not given: false
     }
     report_["options"][option_key(*opt)] = typed_option_value(*opt, res);
   }

@@ -105,6 +105,7 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
                                  " values per cell, expected (p+1)^2 = " + std::to_string((p + 1) * (p + 1)));
   if (f->num_cells() != sol.num_cells())
     throw InputError(source, "field \"" + opt.field + "\" does not match the cell count");
+  if (sol.num_cells() == 0) throw InputError(source, "the mesh has no cells");
   if (!(opt.q >= 1)) throw InputError("q must be >= 1");
   if (!(opt.max_anisotropy >= 1)) throw InputError("max anisotropy must be >= 1");
   if (!(opt.observed_floor == 0 || opt.observed_floor >= 1))
@@ -165,22 +166,34 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
     for (size_t k = 0; k < per_cell; ++k) cell_umax[c] = std::max(cell_umax[c], std::abs(f->values[c * per_cell + k]));
   for (int c = 0; c < nc; ++c)
     for (int o : patches[c]) patch_umax[c] = std::max(patch_umax[c], cell_umax[o]);
+  // ... and how much a stretched cell amplifies it: a degree-n derivative across a cell of h_long x
+  // h_short carries ε U / h_short^n, which is ε U (h_long / h_short)^(n/2) on the scale A1 h_k^n
+  // (h_k = sqrt(area)); h_long / h_short ~ longest edge^2 / area. Without it, u = 1000 + x on
+  // cells of aspect 1000 got noise directions with ρ up to 3000 (a review).
+  std::vector<double> rounding(nc);
+  for (int c = 0; c < nc; ++c) {
+    double longest2 = 0;
+    const Cell& cell = sol.cells[c];
+    for (int k = 0; k < cell.nv; ++k)
+      longest2 = std::max(longest2, (sol.nodes[cell.v[(k + 1) % cell.nv]] - sol.nodes[cell.v[k]]).squaredNorm());
+    const double stretch = std::max(1.0, longest2 / area[c]);
+    rounding[c] = kRoundingFactor * std::numeric_limits<double>::epsilon() * patch_umax[c] * std::pow(stretch, 0.5 * n);
+  }
   // Noise floor: a cell whose degree-(p+1) term changes u over the cell (A1 h_k^n) by at most
   // direction_floor · (max u − min u) / 2 — half the oscillation, max|u − c| about the range's
   // centre c: max|u| for a field symmetric about 0, and u + const gives the same shape (with max|u|
   // an offset of 1e3 zeroed 252 more cells of a Gaussian: a review) — or by no more than
-  // the rounding of its fit (kRoundingFactor ε max|u_h| over the patch), or whose A1 is below
+  // the rounding of its fit (`rounding`, above), or whose A1 is below
   // direction_floor · max A1, has no meaningful derivative: A1 = A2 = 0, phi = 0, B = 0,
   // isotropic θ = 0, ρ = 1.
   double amax = 0;
   for (double a : r.A1) amax = std::max(amax, a);
   const auto [umin_it, umax_it] = std::minmax_element(f->values.begin(), f->values.end());
-  const double half_oscillation = 0.5 * (*umax_it - *umin_it);
-  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const double half_oscillation = f->values.empty() ? 0.0 : 0.5 * (*umax_it - *umin_it);
 #pragma omp parallel for schedule(static)
   for (int c = 0; c < nc; ++c) {
     const double hk = std::sqrt(area[c]);
-    const double zero = std::max(opt.direction_floor * half_oscillation, kRoundingFactor * eps * patch_umax[c]);
+    const double zero = std::max(opt.direction_floor * half_oscillation, rounding[c]);
     if (r.A1[c] * std::pow(hk, n) <= zero || r.A1[c] <= opt.direction_floor * amax) {
       // phi too: the direction of a noise term would differ between a field and its mirror image
       r.A1[c] = r.A2[c] = r.phi[c] = 0;
@@ -210,7 +223,7 @@ EstimateResult estimate_frame(const Mesh& sol, const EstimateOptions& opt, const
   if (opt.observed_floor > 0) {
     // the misfit m_K = |K| mean |ũ − u_h|^q that rounding alone gives
     std::vector<double> noise(nc);
-    for (int c = 0; c < nc; ++c) noise[c] = std::pow(kRoundingFactor * eps * patch_umax[c], opt.q) * area[c];
+    for (int c = 0; c < nc; ++c) noise[c] = std::pow(rounding[c], opt.q) * area[c];
     raise_by_misfit(area, noise, opt, r);
   }
   return r;

@@ -37,10 +37,11 @@ struct EstimateOptions {
   /// times its median over the cells, B_K is raised by that excess, at most 64× (docs/estimate-frame.md
   /// *Observed-error floor*): the Taylor model under-predicts singular and unresolved cells.
   double observed_floor = 4;
-  /// Noise floor: cells with A1 h_k^(p+1) <= max(direction_floor · (max u − min u) / 2, 1e3 ε max|u_h|
-  /// over the cell's patch) (h_k = sqrt(cell area)) or A1 <= direction_floor · max_k A1 are
-  /// derivative-free: A1 = A2 = B = 0, θ = 0, ρ = 1. The observed-error floor ignores cells whose
-  /// misfit is at that rounding level, (1e3 ε max|u_h|)^q |K|.
+  /// Noise floor: cells with A1 h_k^(p+1) <= max(direction_floor · (max u − min u) / 2, R_K) (h_k =
+  /// sqrt(cell area)) or A1 <= direction_floor · max_k A1 are derivative-free: A1 = A2 = B = 0,
+  /// θ = 0, ρ = 1. R_K = 1e3 ε max|u_h| over the cell's patch × s_K^((p+1)/2), s_K = longest edge² /
+  /// area (a stretched cell's fit amplifies rounding across it), is the fit's rounding; the
+  /// observed-error floor ignores cells whose misfit is at that level, R_K^q |K|.
   double direction_floor = 1e-10;
 };
 

@@ -1,6 +1,7 @@
 #include "mesh/curve_boundary.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <map>
 
@@ -107,10 +108,13 @@ std::vector<double> edge_parameters(const BoundaryGeometry& g, int k, double ta,
 }
 
 // The q - 1 interior control points of a boundary edge a-b whose ends lie on two different curves
-// ka, kb of `group` that meet at a shared vertex V with one tangent line (G1: a circle made of
-// arcs): at equal arc-length steps along a -> V -> b, each curve's arc length taken as its
-// parameter length times its speed |c'| at V (exact for circles and lines). Empty when a and b
-// are not so placed (then the edge is refused: a corner of the geometry is not a node).
+// ka, kb of `group` that meet at a shared vertex V with one tangent line and one direction of
+// travel (G1: a circle made of arcs): at equal arc-length steps along a -> V -> b, each curve's
+// arc length taken as its parameter length times its speed |c'| at V (exact for circles and
+// lines). Of the vertices the two curves share (two for a circle drawn as two half arcs) the one
+// with the shortest path a -> V -> b, which must be about the chord (at most 2x; a longer one
+// would send the edge round the curve). Empty when a and b are not so placed (then the edge is
+// refused: a corner of the geometry is not a node).
 std::vector<Vec2> across_junction(const BoundaryGeometry& g, const std::vector<int>& group, const Vec2& a,
                                   const Vec2& b, int q, double len) {
   int ka = -1, kb = -1;
@@ -119,25 +123,31 @@ std::vector<Vec2> across_junction(const BoundaryGeometry& g, const std::vector<i
   if (ka < 0 || kb < 0 || ka == kb || (pa - a).norm() > 1e-9 * len || (pb - b).norm() > 1e-9 * len) return {};
   const GeometryCurve &ca = g.curves()[ka], &cb = g.curves()[kb];
   if (ca.closed() || cb.closed()) return {};
+  double best = std::numeric_limits<double>::infinity(), tva = 0, tvb = 0, sa = 0, sb = 0, la = 0, lb = 0;
   for (int ea = 0; ea < 2; ++ea)
     for (int eb = 0; eb < 2; ++eb) {
       if (ca.ends[ea] != cb.ends[eb]) continue;
-      const double tva = ea == 0 ? ca.t0 : ca.t1, tvb = eb == 0 ? cb.t0 : cb.t1;
-      const Vec2 da = g.derivative(ka, tva), db = g.derivative(kb, tvb);
-      const double sa = da.norm(), sb = db.norm();
-      // one tangent line at V (the curves leave V in opposite directions): a smooth junction
-      if (!(sa > 0 && sb > 0) || std::abs(da.x() * db.y() - da.y() * db.x()) > 1e-6 * sa * sb) continue;
-      const double la = std::abs(tva - ta) * sa, lb = std::abs(tb - tvb) * sb;  // arc lengths a -> V, V -> b
-      if (!(la > 0 && lb > 0)) continue;
-      std::vector<Vec2> pts;
-      for (int i = 1; i < q; ++i) {
-        const double s = (la + lb) * i / q;
-        pts.push_back(s <= la ? g.point(ka, ta + (tva > ta ? 1 : -1) * s / sa)
-                              : g.point(kb, tvb + (tb > tvb ? 1 : -1) * (s - la) / sb));
-      }
-      return pts;
+      const double va = ea == 0 ? ca.t0 : ca.t1, vb = eb == 0 ? cb.t0 : cb.t1;
+      const Vec2 da = g.derivative(ka, va), db = g.derivative(kb, vb);
+      const double na = da.norm(), nb = db.norm();
+      if (!(na > 0 && nb > 0)) continue;
+      // the directions of travel a -> V on ka and V -> b on kb: parallel and the same way (a cusp,
+      // which turns back, is not smooth)
+      const Vec2 ua = (va > ta ? 1.0 : -1.0) * da / na, ub = (tb > vb ? 1.0 : -1.0) * db / nb;
+      if (std::abs(ua.x() * ub.y() - ua.y() * ub.x()) > 1e-6 || ua.dot(ub) <= 0) continue;
+      const double path_a = std::abs(va - ta) * na, path_b = std::abs(tb - vb) * nb;
+      if (!(path_a > 0 && path_b > 0) || path_a + path_b >= best) continue;
+      best = path_a + path_b;
+      tva = va, tvb = vb, sa = na, sb = nb, la = path_a, lb = path_b;
     }
-  return {};
+  if (!(best <= 2 * len)) return {};
+  std::vector<Vec2> pts;
+  for (int i = 1; i < q; ++i) {
+    const double s = (la + lb) * i / q;
+    pts.push_back(s <= la ? g.point(ka, ta + (tva > ta ? 1 : -1) * s / sa)
+                          : g.point(kb, tvb + (tb > tvb ? 1 : -1) * (s - la) / sb));
+  }
+  return pts;
 }
 
 }  // namespace

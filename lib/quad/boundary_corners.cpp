@@ -34,6 +34,13 @@ BoundaryCornerStats split_flat_boundary_corners(Mesh& m, double max_angle_deg) {
       return u.x() * w.y() - u.y() * w.x() > 0;
     };
     if (!ccw(v, b, c) || !ccw(v, c, a)) continue;
+    // the split must open the corner: both new angles at v below the bound (a skewed quad whose
+    // diagonal v-c runs along one of v's edges would keep ~the old angle in one triangle)
+    auto angle_at_v = [&](int x, int y) {
+      const Vec2 u = m.nodes[x] - m.nodes[v], w = m.nodes[y] - m.nodes[v];
+      return std::acos(std::clamp(u.dot(w) / (u.norm() * w.norm()), -1.0, 1.0));
+    };
+    if (angle_at_v(b, c) > max_angle || angle_at_v(c, a) > max_angle) continue;
     Cell t1, t2;
     t1.nv = t2.nv = 3;
     t1.v = {v, b, c, -1};

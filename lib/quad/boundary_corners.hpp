@@ -15,6 +15,8 @@
 // makes 6 quads of them instead of 4. An edge rotation with a neighbour would only move the
 // defect to the next boundary vertex (a valence deficit on a smooth boundary is topological).
 // A triangle touching v alone is left (counted): its split gives v one quad with the same angle.
+// So is a quad whose split would leave either new angle at v above the bound, and the second flat
+// corner of a quad with two (its split serves the first): `found` counts vertices, `split` quads.
 #include "mesh/mesh.hpp"
 
 namespace quadapt {

@@ -182,6 +182,29 @@ meshconvert -q "$T/ann-turned.msh" --geometry "$AG" --order 3 -o "$T/ann-j.msh" 
 python3 -c "import json,sys; c=json.load(open(sys.argv[1]))['curving']; assert c['junction_edges'] == 8 and c['straight_edges'] == 0 and c['max_distance'] < 1e-12, c" "$T/ann-j.json" ||
   fail "junction edges: $(cat "$T/ann-j.json")"
 on_annulus "$T/ann-j.msh" "junction edges"
+# ... and a circle drawn as two half arcs (OpenCASCADE's way) shares two vertices between its
+# curves: the edge goes through the near one (it went the long way round: "folds", sagitta 1.73)
+cat > "$T/disk2.geo" <<'GEO'
+SetFactory("OpenCASCADE");
+Circle(1) = {0, 0, 0, 1, 0, Pi};
+Circle(2) = {0, 0, 0, 1, Pi, 2*Pi};
+Coherence;
+Curve Loop(1) = {1, 2};
+Plane Surface(1) = {1};
+Physical Curve("wall", 1) = {1, 2};
+Physical Surface("domain", 2) = {1};
+Recombine Surface{1};
+Mesh.MeshSizeMax = 0.25;
+Mesh.RecombinationAlgorithm = 2;
+ReverseMesh Surface{1};
+GEO
+gmsh -2 -v 0 "$T/disk2.geo" -o "$T/disk2-g.msh"
+meshconvert -q "$T/disk2-g.msh" --require quads -o "$T/disk2.msh"
+map_nodes "$T/disk2.msh" "$T/disk2-turned.msh" "math.cos(math.radians(3)) * x - math.sin(math.radians(3)) * y" \
+  "math.sin(math.radians(3)) * x + math.cos(math.radians(3)) * y"
+meshconvert -q "$T/disk2-turned.msh" --geometry "$T/disk2.geo" --order 3 -o "$T/disk2-3.msh" || fail "half-arc disk refused"
+python3 -c "import json,sys; c=json.load(open(sys.argv[1]))['curving']; assert c['junction_edges'] == 2 and c['max_sagitta'] < 0.01, c" \
+  "$T/disk2-3.json" || fail "half-arc disk: $(cat "$T/disk2-3.json")"
 # --- a mesh of another domain within half an edge of the curves (the annulus scaled by 1.1, every node
 # moved by 23 % of its edge) was snapped without a word (a review): now a warning per boundary
 map_nodes "$T/ann.msh" "$T/ann-scaled.msh" "1.1 * x" "1.1 * y"

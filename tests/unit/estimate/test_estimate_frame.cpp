@@ -8,6 +8,7 @@
 #include "estimate/estimate_frame.hpp"
 #include "estimate/polynomial_model.hpp"
 #include "estimate/interpolate.hpp"
+#include "mesh/jitter.hpp"
 #include "test_util.hpp"
 #include "../worst.hpp"
 
@@ -422,4 +423,24 @@ TEST_CASE("u and u + const give the same shape: the noise floor scales with u's 
   CHECK(lost < 1e-8);
   // where u's third derivatives change u by 1e-6 or more, B is kept to the offset's rounding (measured 2e-5)
   CHECK(worst < 1e-3);
+}
+
+TEST_CASE("stretched cells: an offset's rounding is not taken for a derivative") {
+  // u = 1000 + x (no degree-3 term at all) on a jittered 12 x 12 grid squeezed 1000x in y, p = 2:
+  // the fit's rounding across a cell of aspect ~1000 is ε U (aspect)^(3/2) on the scale A1 h_k^3,
+  // far above ε U; every cell must come out without a derivative (before the stretch factor 110 of
+  // 144 cells got noise directions with ρ up to 3000: a review). u = x alike.
+  Mesh m = make_structured_quads(12, 12);
+  JitterOptions j;
+  j.fraction = 0.3;
+  j.seed = 2;
+  jitter_interior_nodes(m, j);
+  for (auto& x : m.nodes) x.y() *= 1e-3;
+  for (double offset : {0.0, 1000.0}) {
+    CAPTURE(offset);
+    const EstimateResult r = estimate_frame(with_u(m, 2, [offset](double x, double) { return offset + x; }));
+    int without = 0;
+    for (int c = 0; c < m.num_cells(); ++c) without += r.B[c] == 0;
+    CHECK(without == m.num_cells());
+  }
 }

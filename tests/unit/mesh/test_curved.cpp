@@ -225,12 +225,46 @@ TEST_CASE("curved map: a fold between the sample points is found (det J certifie
   CHECK(certify_jacobian(fine, 0).positive);
   CHECK(min_scaled_jacobian(fine).min > 0);
   CHECK_NOTHROW(validate_mesh(fine, "fine.msh", v));
-  // exactness of the certificate's grid: on a disk of every order the certificate agrees with
-  // the samples (valid), and its corner values are det J's
+  // the Bernstein conversion: on a disk of every order the certificate agrees with the samples
+  // (valid), and its lowest value — the smallest corner coefficient, which a right conversion of
+  // the 2q x 2q values makes det J at the cell's corners — is det J's minimum over the 4 corners
   for (int q : {2, 3, 4, 6}) {
     const Mesh d = curved_disk(2, q);
-    for (int c = 0; c < d.num_cells(); ++c) CHECK(certify_jacobian(d, c).positive);
+    for (int c = 0; c < d.num_cells(); ++c) {
+      const JacobianCertificate cc = certify_jacobian(d, c);
+      CHECK(cc.positive);
+      CellMap Gd(d, c);
+      double corners = 1e300;
+      for (double xi : {-1.0, 1.0})
+        for (double eta : {-1.0, 1.0}) corners = std::min(corners, Gd.jacobian(xi, eta, t1, t2));
+      CHECK(cc.lowest == doctest::Approx(corners).epsilon(1e-9));
+    }
   }
+}
+
+TEST_CASE("curved map: det J's sign decided to 1e-5 of its scale, either way") {
+  // Cell [0, 0.5]^2 at q = 3 whose bottom edge is a cubic x(xi) (y = 0) whose slope x'(xi) is
+  // smallest, = m, at xi = 0.3 (a review's construction): m = +1e-5 is valid (det J > 0, 1e-5 of its
+  // largest), m = -1e-5 is a fold. The certificate's first depth limit (12) called the first a fold.
+  auto make = [](double m) {
+    const double xs = 0.3, A = (0.25 - m) / (1 + 3 * xs * xs), a3 = A, a2 = -3 * A * xs, a1 = 0.25 - A, a0 = 0.25 - a2;
+    auto x = [&](double t) { return a0 + a1 * t + a2 * t * t + a3 * t * t * t; };
+    Mesh c = make_structured_quads(1, 1, 0, 0.5, 0, 0.5);
+    elevate_geometric_order(c, 3);
+    c.curved.points[1] = Vec2(x(-1.0 / 3), 0);
+    c.curved.points[2] = Vec2(x(1.0 / 3), 0);
+    return c;
+  };
+  ValidateOptions v;
+  v.allow_curved = true;
+  const Mesh valid = make(1e-5), folded = make(-1e-5);
+  const JacobianCertificate a = certify_jacobian(valid, 0), b = certify_jacobian(folded, 0);
+  CHECK(a.positive);
+  CHECK(min_scaled_jacobian(valid).min > 0);
+  CHECK_NOTHROW(validate_mesh(valid, "valid.msh", v));
+  CHECK_FALSE(b.positive);
+  CHECK(b.lowest < 0);
+  CHECK_THROWS_AS(validate_mesh(folded, "folded.msh", v), InputError);
 }
 
 TEST_CASE("curved map: a cell folded through itself is called inverted, not zero-area") {
