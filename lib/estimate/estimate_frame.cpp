@@ -49,7 +49,7 @@ namespace {
 // not follow, would keep investing in it (uncapped, an L-shape loop at p = 3 coarsened the rest
 // of the domain 3x at its step 7 and its error rose 16x; docs/estimate-frame.md).
 constexpr double kMaxRaise = 64;
-// area: |cell area| per cell; noise: per cell, the misfit that rounding alone gives (rounding_misfit).
+// area: |cell area| per cell; noise: per cell, the misfit that rounding alone gives.
 // A cell whose misfit is at that level tells nothing about the model (u_h may be the polynomial
 // exactly): it takes no part in κ and is never raised. Without this, a field that the model
 // describes exactly had its B raised up to 64x on the cells whose rounding happened to be above
