@@ -5,8 +5,6 @@
 #include <limits>
 #include <vector>
 
-#include <Eigen/LU>
-
 #include "core/error.hpp"
 
 namespace quadapt {
@@ -178,18 +176,40 @@ void elevate_geometric_order(Mesh& m, int q) {
 namespace {
 
 /// Bernstein coefficients (degree n - 1 on [0, 1]) of the values f at the n equispaced points
-/// t_k = k / (n - 1): the inverse of the collocation matrix B_j(t_k) (n <= 2 kMaxGeometricOrder).
+/// t_k = k / (n - 1): the inverse of the collocation matrix B_j(t_k) (n <= 2 kMaxGeometricOrder),
+/// by Gauss-Jordan with partial pivoting written out here: Eigen's dynamic-size LU
+/// (PartialPivLU<MatrixXd>) is also instantiated and exported by Debian's libgmsh, and the
+/// dynamic linker bound ours to its copy, built with another layout (AddressSanitizer: a heap
+/// overflow inside compute_inverse when libgmsh was loaded).
 Eigen::MatrixXd bernstein_from_values(int n) {
-  Eigen::MatrixXd V(n, n);
+  std::vector<double> a(static_cast<size_t>(n) * 2 * n, 0.0);  // [V | I], row-major, 2n columns
+  auto at = [&](int r, int c) -> double& { return a[static_cast<size_t>(r) * 2 * n + c]; };
   for (int k = 0; k < n; ++k) {
     const double t = n == 1 ? 0 : static_cast<double>(k) / (n - 1);
     for (int j = 0; j < n; ++j) {
       double binom = 1;
       for (int i = 0; i < j; ++i) binom = binom * (n - 1 - i) / (i + 1);
-      V(k, j) = binom * std::pow(t, j) * std::pow(1 - t, n - 1 - j);
+      at(k, j) = binom * std::pow(t, j) * std::pow(1 - t, n - 1 - j);
+    }
+    at(k, n + k) = 1;
+  }
+  for (int c = 0; c < n; ++c) {
+    int piv = c;
+    for (int r = c + 1; r < n; ++r)
+      if (std::abs(at(r, c)) > std::abs(at(piv, c))) piv = r;
+    for (int j = 0; j < 2 * n; ++j) std::swap(at(c, j), at(piv, j));
+    const double d = at(c, c);
+    for (int j = 0; j < 2 * n; ++j) at(c, j) /= d;
+    for (int r = 0; r < n; ++r) {
+      if (r == c || at(r, c) == 0) continue;
+      const double f = at(r, c);
+      for (int j = 0; j < 2 * n; ++j) at(r, j) -= f * at(c, j);
     }
   }
-  return V.inverse();
+  Eigen::MatrixXd inv(n, n);
+  for (int r = 0; r < n; ++r)
+    for (int j = 0; j < n; ++j) inv(r, j) = at(r, n + j);
+  return inv;
 }
 
 /// Halves the tensor Bernstein coefficients B (rows: eta index, columns: xi index) at 1/2 along
