@@ -151,17 +151,18 @@ void Tool::set_report_path(const std::string& p) {
 
 void Tool::output_json(const std::string& path, const std::string& what) {
   output(path);
-  if (path != "-") refuse_foreign_json(path, what, "JSON", "give " + what + " another path", /*allow_empty=*/true);
+  if (path != "-") refuse_foreign_json(path, what, /*report=*/false, "give " + what + " another path", /*allow_empty=*/true);
 }
 
-void Tool::refuse_foreign_json(const std::string& path, const std::string& what, const std::string& writes,
-                               const std::string& fix, bool allow_empty) {
+void Tool::refuse_foreign_json(const std::string& path, const std::string& what, bool report, const std::string& fix,
+                               bool allow_empty) {
   // a JSON output named like a file the toolkit reads or writes (`--report keep.msh`, a picture,
   // the loop's table, Gmsh's options) would overwrite it with JSON
   const std::string ext = lower_extension(path);
   static const char* const kNotJson[] = {".msh", ".vtu", ".vtk", ".geo", ".png", ".svg", ".pdf", ".csv", ".opt"};
   if (std::find(std::begin(kNotJson), std::end(kNotJson), ext) != std::end(kNotJson))
-    throw InputError(path, what + " writes " + writes + ", not a " + ext.substr(1) + " file: give it a .json name");
+    throw InputError(path, what + " writes " + (report ? "a JSON report" : "JSON") + ", not a " + ext.substr(1) +
+                               " file: give it a .json name");
   // nor a file of the user's that is in the way (`--report case.json` of a case not read this
   // time, `-o mm1.msh` beside a case file mm1.json): only a quadapt JSON (an earlier report, an
   // earlier --voronoi) is replaced, and an empty file where allowed
@@ -169,8 +170,8 @@ void Tool::refuse_foreign_json(const std::string& path, const std::string& what,
   if (!std::filesystem::is_regular_file(path, ec)) return;
   const auto size = std::filesystem::file_size(path, ec);
   if (ec || (allow_empty && size == 0) || is_tool_report(path)) return;
-  const std::string kind = writes == "a JSON report" ? "a quadapt report" : "quadapt's JSON (no \"tool\" key)";
-  throw InputError(path, "exists and is not " + kind + "; " + what + " would replace it: " + fix);
+  throw InputError(path, std::string("exists and is not ") + (report ? "a quadapt report" : "quadapt's JSON (no \"tool\" key)") +
+                             "; " + what + " would replace it: " + fix);
 }
 
 void Tool::declare_report() {
@@ -181,12 +182,12 @@ void Tool::declare_report() {
   if (report_explicit_) {
     protect_output(report_path_, "the report (--report)", "give --report another path");
     if (report_path_ != "-")
-      refuse_foreign_json(report_path_, "--report", "a JSON report", "give --report another path (or remove the file)",
+      refuse_foreign_json(report_path_, "--report", /*report=*/true, "give --report another path (or remove the file)",
                           /*allow_empty=*/true);
   } else {
     const std::string beside = "the report written beside the output " + (outputs_.empty() ? std::string() : outputs_.front());
     protect_output(report_path_, beside, "give --report another path, or -o another name");
-    refuse_foreign_json(report_path_, beside, "a JSON report", "give --report another path, or -o another name",
+    refuse_foreign_json(report_path_, beside, /*report=*/true, "give --report another path, or -o another name",
                         /*allow_empty=*/false);
   }
 }

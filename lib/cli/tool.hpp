@@ -119,11 +119,11 @@ class Tool {
 
  private:
   void declare_report();
-  /// The JSON-output refusals shared by --report and output_json (see there); `allow_empty`:
+  /// The JSON-output refusals shared by --report and output_json (see there), `what` naming the
+  /// output in messages; `report`: the output is a tool report (messages say so); `allow_empty`:
   /// an empty file (mktemp's) may be replaced.
-  /// `writes` says what: "a JSON report", "JSON".
-  static void refuse_foreign_json(const std::string& path, const std::string& what, const std::string& writes,
-                                  const std::string& fix, bool allow_empty);
+  static void refuse_foreign_json(const std::string& path, const std::string& what, bool report, const std::string& fix,
+                                  bool allow_empty);
   static void use_stdio(const std::string& path, bool& used, const char* what);
 
   std::string name_;
