@@ -39,9 +39,11 @@ SnapStats snap_once(Mesh& m, const BoundaryGeometry& g, const std::string& path,
   const auto curves = group_curves(m, g, path);
   std::map<int, std::vector<int>> node_curves;  // node -> candidate curves
   std::map<int, double> node_edge;              // node -> shortest boundary edge at it
+  std::map<int, int> node_group;                // node -> a boundary group of it (the first edge's)
   for (const auto& e : m.boundary) {
     const double len = (m.nodes[e.v[0]] - m.nodes[e.v[1]]).norm();
     for (int v : e.v) {
+      node_group.emplace(v, e.group);
       auto& cs = node_curves[v];
       for (int k : curves[e.group])
         if (std::find(cs.begin(), cs.end(), k) == cs.end()) cs.push_back(k);
@@ -54,9 +56,6 @@ SnapStats snap_once(Mesh& m, const BoundaryGeometry& g, const std::string& path,
   // per group: nodes already on its curves, nodes, the largest move relative to the edge at the node
   std::vector<int> group_on(m.groups.size(), 0), group_nodes(m.groups.size(), 0);
   std::vector<double> group_rel(m.groups.size(), 0), group_move(m.groups.size(), 0);
-  std::map<int, int> node_group;
-  for (const auto& e : m.boundary)
-    for (int v : e.v) node_group.emplace(v, e.group);
   for (auto& [v, cs] : node_curves) {
     ++s.boundary_nodes;
     int k = -1;
