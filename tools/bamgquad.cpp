@@ -146,7 +146,7 @@ int main(int argc, char** argv) {
     const double miss = std::abs(st.complexity_ratio - 1);
     if (miss > std::max(kCountWarning, opt.calibration_tolerance))
       tool.warn(std::to_string(st.cells) + " cells for the frame's target of " +
-               std::to_string(std::lround(st.target_complexity)) + " (ratio " + sci(st.complexity_ratio) + ") after " +
+               count_text(st.target_complexity) + " (ratio " + sci(st.complexity_ratio) + ") after " +
                std::to_string(st.runs) + " BAMG run(s)" +
                (tool.app().count("--edge-factor") ? ": --edge-factor far from its default?"
                                                   : ": the frame's sizes cannot be met on this domain?"));

@@ -215,8 +215,8 @@ int main(int argc, char** argv) {
     const double target = tool.report().value("target_cells", 0.0);
     const double expected = tool.report().value("expected_cells", 0.0);
     if (target > 0 && (expected > 1.5 * target || expected < target / 1.5))
-      tool.warn("about " + std::to_string(std::lround(expected)) + " cells after recombine for the frame's " +
-               std::to_string(std::lround(target)) + " (ratio " + sci(expected / target) +
+      tool.warn("about " + count_text(expected) + " cells after recombine for the frame's " + count_text(target) +
+               " (ratio " + sci(expected / target) +
                "): the frame's sizes cannot be met on this domain (elements longer than the domain in some direction?)");
     if (r.metric_flips_capped)
       tool.warn("the output's metric flips stopped at their cap (" + std::to_string(r.metric_flips) +

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -63,6 +64,32 @@ std::string cause_in(const fs::path& log) {
   if (cause.size() > 160) cause = cause.substr(0, 157) + "...";
   return cause;
 }
+/// BAMG works in a frame near the origin of about unit size: a unit square moved to
+/// [1e6, 1e6 + 1]^2 made ffbamg abort ("Fatal error in the mesh generator 1001") on its second
+/// calibration run (a review, session 35). So a box far from the origin (its centre more than 4
+/// extents away) or of an extent outside [1/16, 16] is written as x' = (x - shift) / scale:
+/// scale the extent rounded up to a power of two (exact), shift its lower corner rounded down to
+/// a multiple of scale (x - shift exact), so that an exact translation by a multiple of scale
+/// gives ffbamg the same bytes. Other boxes are written as they are (bit for bit as before).
+/// Metrics carry scale^2 (lengths shrink by scale).
+struct Normalisation {
+  Vec2 shift = Vec2::Zero();
+  double scale = 1;
+};
+
+Normalisation normalisation(const std::vector<Vec2>& v) {
+  Normalisation n;
+  if (v.empty()) return n;
+  Vec2 lo = v[0], hi = v[0];
+  for (const auto& x : v) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+  const double extent = (hi - lo).maxCoeff();
+  if (!(extent > 0) || !std::isfinite(extent)) return n;
+  const double far = (0.5 * (lo + hi)).cwiseAbs().maxCoeff() / extent;
+  if (far <= 4 && extent >= 1.0 / 16 && extent <= 16) return n;
+  n.scale = std::exp2(std::ceil(std::log2(extent)));
+  if (far > 4) n.shift = Vec2(n.scale * std::floor(lo.x() / n.scale), n.scale * std::floor(lo.y() / n.scale));
+  return n;
+}
 }  // namespace
 
 FfbamgResult run_ffbamg(const InriaMesh& background, const std::vector<Eigen::Matrix2d>& metric,
@@ -78,8 +105,18 @@ FfbamgResult run_ffbamg(const InriaMesh& background, const std::vector<Eigen::Ma
   TempDir dir;
   const fs::path bg = dir.file("background.mesh"), mtr = dir.file("background.mtr"), out = dir.file("out.mesh"),
                  log = dir.file("ffbamg.log");
-  write_inria_mesh(background, bg.string());
-  write_bamg_metric(metric, mtr.string());
+  const Normalisation nz = normalisation(background.vertices);
+  if (nz.scale == 1 && nz.shift == Vec2::Zero()) {
+    write_inria_mesh(background, bg.string());
+    write_bamg_metric(metric, mtr.string());
+  } else {
+    InriaMesh b = background;
+    for (auto& x : b.vertices) x = (x - nz.shift) / nz.scale;
+    std::vector<Eigen::Matrix2d> m = metric;
+    for (auto& t : m) t *= nz.scale * nz.scale;
+    write_inria_mesh(b, bg.string());
+    write_bamg_metric(m, mtr.string());
+  }
 
   std::vector<std::string> args = {exe, "-b", bg.string(), "-M", mtr.string(), "-o", out.string(),
                                    "-nbv", std::to_string(opt.max_vertices), "-v", "1",
@@ -109,6 +146,7 @@ FfbamgResult run_ffbamg(const InriaMesh& background, const std::vector<Eigen::Ma
     throw ExternalError(std::string("ffbamg wrote an unreadable mesh: ") + e.what());
   }
   if (res.mesh.triangles.empty()) throw ExternalError("ffbamg produced no triangles: " + cause_in(log));
+  for (auto& x : res.mesh.vertices) x = nz.shift + nz.scale * x;
   return res;
 }
 

@@ -12,6 +12,14 @@ inline std::string sci(double v) {
   return buf;
 }
 
+/// A count that may be fractional (a frame's target cells): whole from 100 on ("1012"), else three
+/// significant digits ("0.0025", "12.5") — a frame asking 0.0025 cells printed as "0".
+inline std::string count_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, v >= 100 || v <= -100 ? "%.0f" : "%.3g", v);
+  return buf;
+}
+
 /// A point (x, y) as "(x, y)" with both coordinates as sci() prints them: "(5.000e-01, 1.000e+00)".
 inline std::string sci_point(double x, double y) { return "(" + sci(x) + ", " + sci(y) + ")"; }
 

@@ -113,10 +113,13 @@ double cell_area(const Mesh& m, int c) {
       for (int i = 0; i < n; ++i) a += w[i] * w[j] * G.jacobian(x[i], x[j], t1, t2);
     return a;
   }
+  // shoelace about the first vertex: on absolute coordinates the sum loses |x|^2 eps, so a unit
+  // cell at x = 1e7 had "zero area" (a review, session 35)
+  const Vec2& o = m.nodes[cell.v[0]];
   double a = 0;
-  for (int i = 0; i < cell.nv; ++i) {
-    const Vec2& p = m.nodes[cell.v[i]];
-    const Vec2& q = m.nodes[cell.v[(i + 1) % cell.nv]];
+  for (int i = 1; i + 1 < cell.nv; ++i) {
+    const Vec2 p = m.nodes[cell.v[i]] - o;
+    const Vec2 q = m.nodes[cell.v[i + 1]] - o;
     a += p.x() * q.y() - q.x() * p.y();
   }
   return 0.5 * a;

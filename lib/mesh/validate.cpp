@@ -46,7 +46,8 @@ CellProblem cell_problem(const Mesh& m, int c) {
   for (int k = 0; k < cell.nv; ++k) {
     const Vec2& p = m.nodes[cell.v[k]];
     const Vec2& q = m.nodes[cell.v[(k + 1) % cell.nv]];
-    twice_area += p.x() * q.y() - q.x() * p.y();
+    const Vec2& o = m.nodes[cell.v[0]];  // about a vertex: absolute coordinates lose |x|^2 eps
+    twice_area += (p - o).x() * (q - o).y() - (q - o).x() * (p - o).y();
     Vec2 a = q - p;
     Vec2 b = m.nodes[cell.v[(k + cell.nv - 1) % cell.nv]] - p;
     if (a.x() * b.y() - a.y() * b.x() < -tol && negative++ == 0) first_negative = k;

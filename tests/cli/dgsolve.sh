@@ -222,7 +222,8 @@ rc=0; dgsolve -q "$T/thin12.msh" -c "$T/layer30.json" -p 2 -o "$T/th12.msh" 2> "
 # was: exit 0, GMRES accepted at relative residual 1.8e-4 (its normwise rounding floor was the thin
 # cell's penalty rows), the functional 2x off
 [ $rc = 2 ] || fail "thin 1e-12: exit $rc: $(cat "$T/th12.err")"
-grep -q "is 1.99[0-9]e-12 thick against a median of 1.250e-01: a cell that thin makes the system numerically singular" "$T/th12.err" ||
+# (the cell is 1.0000889e-12 wide in double; 2.000e-12 since areas are summed about a vertex, 1.99xe-12 before)
+grep -q "is 2.00[0-9]e-12 thick against a median of 1.250e-01: a cell that thin makes the system numerically singular" "$T/th12.err" ||
   fail "thin 1e-12 message: $(cat "$T/th12.err")"
 [ ! -e "$T/th12.msh" ] || fail "thin 1e-12: output written"
 # --- the rounding floor is checked row by row: p = 4 on Gmsh's transfinite 96 x 32 rectangle, an

@@ -205,3 +205,21 @@ TEST_CASE("two blocks on duplicated nodes: the message says so and names Gmsh's 
   for (int i = off; i < m.num_nodes(); ++i) m.nodes[i].x() += 1e-3;
   CHECK_FALSE(has(problem(m), "duplicated nodes"));
 }
+
+TEST_CASE("far from the origin: areas and validity do not lose |x|^2 eps") {
+  // a review (session 35): the shoelace sum on absolute coordinates made a unit grid at x = 1e7
+  // "degenerate: zero area" and a 1e-3 cell at x = 1e3 7.6e-6 too large (relative)
+  for (const double offset : {1e4, 1e7, 1e8}) {
+    Mesh m = make_structured_quads(4, 3);
+    const double a0 = total_area(m);
+    for (auto& x : m.nodes) x += Vec2(offset, -offset);
+    CHECK(problem(m) == "");
+    CHECK(std::abs(total_area(m) - a0) <= 1e-14 * a0);
+    for (int c = 0; c < m.num_cells(); ++c) CHECK(cell_area(m, c) > 0);
+  }
+  Mesh s = make_structured_quads(2, 2);
+  const double a0 = total_area(s);
+  for (auto& x : s.nodes) x = Vec2(1e3, 1e3) + 1e-3 * x;
+  // the coordinates themselves carry 1e3 eps = 1e-13, 2e-10 of a cell's width: that much, no more
+  CHECK(std::abs(total_area(s) - 1e-6 * a0) <= 1e-9 * 1e-6 * a0);
+}
