@@ -187,8 +187,8 @@ int main(int argc, char** argv) {
         tool.option("convention", to_string(f.source));
         bg = frame_background(f, job, tool.report(), log);
         check_point_budget(bg, job, in);
-        if (const auto& w = tool.report()["frame_span"]["warning"]; w.is_string())
-          tool.warn(in + ": " + w.get<std::string>());
+        for (const char* key : {"frame_span", "frame_bending"})
+          if (const auto& w = tool.report()[key]["warning"]; w.is_string()) tool.warn(in + ": " + w.get<std::string>());
       }
     }
     LpcvtResult r;

@@ -2,7 +2,8 @@
 """Quad quality of the L_p-CVT path at every frame orientation (issue #14, docs/quad-quality.md).
 
 Constant frames on the unit square (16 x 16 background), half-axes h1 = h sqrt(s), h2 = h / sqrt(s)
-with h = sqrt(0.05 * 0.005) (1000 final cells), long axis at angle a; the default chain
+with h = sqrt(1 / (4 N)) (N = --cells final cells, 1000 by default: h = sqrt(0.05 * 0.005)), long
+axis at angle a; the default chain
     lpcvt FRAME -o TRI --seed 3;  recombine TRI -o QUAD;  quadsmooth QUAD --frame FRAME -o MESH
 and, with --bamg, bamgquad FRAME -o MESH. Figures from meshquality --frame (each quad mapped by M
 at its centroid): mean |corner angle - 90| in the metric, minimum metric scaled Jacobian, share of
@@ -13,7 +14,7 @@ corner has the corner's angle); 'min SJ beyond 2 / 4': the same minimum over the
 edges (in the metric) from every corner of the square (computed here from the mesh; exact for a
 constant frame).
 
-  orientation.py BIN OUT [--angles 0 15 ...] [--stretches 1 5 ...] [--bamg] [--jobs 2]
+  orientation.py BIN OUT [--angles 0 15 ...] [--stretches 1 5 ...] [--cells 1000] [--bamg] [--jobs 2]
   orientation.py BIN OUT --seed-cells 1 16 40 ... [--angles ...] [--stretches ...]
   [--lpcvt-args '...'] [--recombine-args '...'] [--quadsmooth-args '...']: options to try
 
@@ -56,11 +57,14 @@ def min_sj_from_corners(path, M, distances=(0, 2, 4)):
     return best
 
 
+CELLS = 1000  # --cells
+
+
 def frame_metric(a_deg, s):
     """The constant frame of (angle a_deg, stretch s): its half-axes h1 = h sqrt(s), h2 = h / sqrt(s)
-    (h = sqrt(0.05 * 0.005): 1000 target cells on the unit square), the angle in radians and
-    M = diag(1/h1, 1/h2) R(-a) (2x2 rows): (h1, h2, a, M)."""
-    h = math.sqrt(0.05 * 0.005)
+    (h = sqrt(1 / (4 CELLS)): CELLS target cells on the unit square; 1000: h = sqrt(0.05 * 0.005)),
+    the angle in radians and M = diag(1/h1, 1/h2) R(-a) (2x2 rows): (h1, h2, a, M)."""
+    h = math.sqrt(0.05 * 0.005) if CELLS == 1000 else math.sqrt(1 / (4 * CELLS))
     h1, h2, a = h * math.sqrt(s), h / math.sqrt(s), math.radians(a_deg)
     c, sn = math.cos(a), math.sin(a)
     return h1, h2, a, [[c / h1, sn / h1], [-sn / h2, c / h2]]
@@ -85,7 +89,7 @@ def make_frame(out, a_deg, s, seed_cell=0):
     """The constant frame of (angle a_deg, stretch s) in OUT, seed cell made finer when given:
     (path, tag, h1, h2, angle in radians)."""
     h1, h2, a, _ = frame_metric(a_deg, s)
-    tag = f"a{a_deg:g}-s{s:g}" + (f"-c{seed_cell}" if seed_cell else "")
+    tag = f"a{a_deg:g}-s{s:g}" + (f"-n{CELLS:g}" if CELLS != 1000 else "") + (f"-c{seed_cell}" if seed_cell else "")
     f = os.path.join(out, f"frame-{tag}.msh")
     run(["/usr/bin/python3", FRAME_PY, f, "--n", "16", "--h1", repr(h1), "--h2", repr(h2), "--theta", repr(a)]
         + (["--finer-cell", str(seed_cell)] if seed_cell else []))
@@ -124,12 +128,15 @@ def main():
     ap.add_argument("bin"); ap.add_argument("out")
     ap.add_argument("--angles", type=float, nargs="+", default=[0, 15, 30, 45, 60, 75])
     ap.add_argument("--stretches", type=float, nargs="+", default=[1, 5, 10, 20])
+    ap.add_argument("--cells", type=float, default=1000, help="target cells of every frame")
     ap.add_argument("--bamg", action="store_true")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--seed-cells", type=int, nargs="+", default=[])
     for tool in EXTRA:
         ap.add_argument(f"--{tool}-args", default="", help=f"extra {tool} options (one string, split at spaces)")
     a = ap.parse_args()
+    global CELLS
+    CELLS = a.cells
     for tool in EXTRA:
         EXTRA[tool] = getattr(a, f"{tool}_args").split()
     os.makedirs(a.out, exist_ok=True)

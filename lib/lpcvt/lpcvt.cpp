@@ -229,7 +229,8 @@ LpcvtResult run_lpcvt(const Background& bg, const LpcvtOptions& opt,
       if (opt.exact_count && opt.initial_points < 0 && (ratio > kCountGuard || ratio < 1 / kCountGuard)) {
         count_stop = true;
         say("split/merge stopped: " + std::to_string(sites.size()) + " points, " + fmt("%.2f", ratio) +
-            "x the request (the frame is graded more than the requested count can follow)");
+            "x the request (the frame changes faster than the requested count can follow: graded, or its rows bent; "
+            "see the frame's warnings)");
         break;
       }
     }

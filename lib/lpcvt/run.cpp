@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "frame/bending.hpp"
 #include "lpcvt/cross_field.hpp"
 #include "lpcvt/energy.hpp"
 #include "lpcvt/metric_filter.hpp"
@@ -159,8 +160,18 @@ Background frame_background(const Frame& f, const LpcvtJob& job, nlohmann::json&
   const FrameSpan span = frame_span(bg);
   const std::string warning = frame_span_warning(span);
   report["frame_span"] = {{"cells_across_long_axis", span.cells_across},
+                          {"cells_along_chord", span.cells_along_chord},
                           {"stretch", span.stretch},
                           {"warning", warning.empty() ? nlohmann::json() : nlohmann::json(warning)}};
+  // the bending of the frame lpcvt meshes (after --smooth and --gradation), in the frame's convention
+  std::vector<Mat2> M(bg.mesh().num_cells());
+  for (int c = 0; c < bg.mesh().num_cells(); ++c) M[c] = bg.mesh_cell_metric(c) / frame_metric_scale();
+  const BendingSummary bend = summarize_bending(bg.mesh(), M, frame_bending(bg.mesh(), M));
+  const std::string bend_warning = frame_bending_warning(bend.share_over_2, bend.max);
+  report["frame_bending"] = {{"share_over_1", bend.share_over_1},
+                             {"share_over_2", bend.share_over_2},
+                             {"max", bend.max},
+                             {"warning", bend_warning.empty() ? nlohmann::json() : nlohmann::json(bend_warning)}};
   return bg;
 }
 
@@ -192,11 +203,41 @@ std::vector<Vec2> vertex_hull(const Mesh& m) {
 }
 }  // namespace
 
+namespace {
+/// The length of the line x = c + t v inside the convex CCW polygon `hull` (0 when it misses it).
+double hull_chord(const std::vector<Vec2>& hull, const Vec2& c, const Vec2& v) {
+  if (hull.size() < 3) return 0;
+  double lo = -std::numeric_limits<double>::infinity(), hi = -lo;
+  for (size_t k = 0; k < hull.size(); ++k) {
+    const Vec2& a = hull[k];
+    const Vec2 e = hull[(k + 1) % hull.size()] - a;
+    const Vec2 n(e.y(), -e.x());  // outward for a counter-clockwise hull: inside n . (x - a) <= 0
+    const double nv = n.dot(v), nc = n.dot(c - a);
+    if (nv > 0)
+      hi = std::min(hi, -nc / nv);
+    else if (nv < 0)
+      lo = std::max(lo, -nc / nv);
+    else if (nc > 0)
+      return 0;
+  }
+  return std::max(0.0, hi - lo);
+}
+}  // namespace
+
+std::string frame_bending_warning(double share_over_2, double max) {
+  if (!(share_over_2 > kBendingWarningShare)) return "";
+  return "the frame's rows bend fast: on " + std::to_string(std::lround(100 * share_over_2)) +
+         " % of its cells the long axis turns by more than its stretch allows (bending number kappa h1^2/h2 > 2, "
+         "up to " + sci(max) + "; docs/quad-quality.md, \"Curved anisotropy\"): lpcvt takes the metric as constant "
+         "over a cell, so such rows come out broken (quads across the layer, irregular vertices); ask for cells "
+         "shorter along the curved layer (h1) or a lower stretch there, so that kappa h1^2/h2 <= 1";
+}
+
 FrameSpan frame_span(const Background& bg) {
   const Mesh& m = bg.mesh();
   const std::vector<Vec2> hull = vertex_hull(m);
   struct Span {
-    double across, stretch, weight;
+    double across, stretch, weight, chord;
   };
   std::vector<Span> cells;
   double total = 0;
@@ -212,7 +253,7 @@ FrameSpan frame_span(const Background& bg) {
       hi = std::max(hi, v.dot(x));
     }
     const double w = cell_area(m, c) * std::abs(M.determinant());
-    cells.push_back({(hi - lo) / (2 * h1), h1 / h2, w});
+    cells.push_back({(hi - lo) / (2 * h1), h1 / h2, w, hull_chord(hull, cell_centroid(m, c), v) / (2 * h1)});
     total += w;
   }
   auto median = [&](double Span::*f) {
@@ -225,11 +266,20 @@ FrameSpan frame_span(const Background& bg) {
   FrameSpan s;
   s.cells_across = median(&Span::across);
   s.stretch = median(&Span::stretch);
+  s.cells_along_chord = median(&Span::chord);
   return s;
 }
 
 std::string frame_span_warning(const FrameSpan& s) {
-  if (!(s.cells_across < kMinCellsAcross)) return "";
+  if (!(s.cells_across < kMinCellsAcross)) {
+    if (!(s.cells_along_chord < kMinCellsAlongChord)) return "";
+    return "the frame asks for only " + sci(s.cells_along_chord) +
+           " cells along its long axis across the domain (stretch " + sci(s.stretch) + "), fewer than " +
+           sci(kMinCellsAlongChord) +
+           ": lpcvt's points are two cells apart, so rows that short cannot keep the frame's lengths (a row gets "
+           "an even number of cells) — expect edges outside the frame's range and irregular vertices; ask for "
+           "cells shorter along the long axis (h1) or a lower stretch";
+  }
   return "the frame asks for only " + sci(s.cells_across) + " cells across the domain along its long axis (stretch " +
          sci(s.stretch) + "), fewer than " + sci(kMinCellsAcross) +
          ": lpcvt's points are two cells apart, so all or nearly all of them lie on the boundary and every cell "

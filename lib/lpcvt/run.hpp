@@ -58,6 +58,10 @@ void check_point_budget(const Background& bg, const LpcvtJob& job, const std::st
 struct FrameSpan {
   double cells_across = 0;  ///< target cells across the domain along the long axis (weighted median)
   double stretch = 1;       ///< h1 / h2 (weighted median)
+  /// target cells along the long axis on the chord through the cell's centroid (the line along v
+  /// clipped by the domain's convex hull; weighted median): a row's length, which cells_across
+  /// (the extent) overstates on a turned domain (a square at 30 degrees: chord 1.155, extent 1.366)
+  double cells_along_chord = 0;
 };
 /// The span of the frame the background meshes (M = M_eff / frame_metric_scale()).
 FrameSpan frame_span(const Background& bg);
@@ -66,16 +70,32 @@ FrameSpan frame_span(const Background& bg);
 /// 45 degrees (up to 3.6 and 3.5 cells) and every cell reaches from wall to wall; the frames of
 /// the tests, PHiLiP's and the constant frames of stretch 1-20 ask for 7 or more.
 constexpr double kMinCellsAcross = 4;
+/// Below this many cells along a chord, rows are too short to keep the frame's lengths: lpcvt's
+/// points are two target cells apart, so a row holds an even number of cells, and a row of 3.2
+/// cells gets 2 or 4 (a review, session 35, constant frames of stretch 50-300 at 0-75 degrees:
+/// 3.2-5.5 cells along the chord gave 70-94 % of the edges in band and up to 13 % irregular
+/// vertices, 6.3 or more met issue #14's item 1 but for one row at 94.2 %).
+constexpr double kMinCellsAlongChord = 6;
 /// The warning for a span below kMinCellsAcross (what the frame asks, what comes out, what to
-/// change), or "" for none.
+/// change), else for one below kMinCellsAlongChord, or "" for none.
 std::string frame_span_warning(const FrameSpan& s);
 
 /// The background of a frame: M_eff = scale * M, then --smooth/--gradation/--orientation, the complexity
 /// rescale and the cells-per-triangle factor. Writes report keys smoothing, gradation,
 /// orientation, frame_cells, complexity, degree, metric_rescale, target_cells, cells_per_triangle,
-/// frame_span (cells_across_long_axis, stretch, warning: frame_span_warning or null) and
+/// frame_span (cells_across_long_axis, cells_along_chord, stretch, warning: frame_span_warning or
+/// null), frame_bending (share_over_1, share_over_2, max, warning or null) and
 /// options.metric_scale, options.cells. The saddle background's default is Euclidean cells
 /// (set job.metric_cells = false for the thesis's validation, as the tool does). Throws InputError for inconsistent options.
+/// Above this share of the target cells with a bending number over 2 (frame/bending.hpp), the
+/// frame's rows bend faster than lpcvt's cells can follow: on a quarter-circle layer (radius 0.6,
+/// 48 x 48 background) shares of 0 / 0 / 0.67 / 0.84 at stretch 10 / 20 / 50 / 100 (h1 = 0.05) gave
+/// 93 / 84 / 74 / 39 % of the edges in band; the studies' loop frames have at most 0.02 (unweighted),
+/// PHiLiP's step-3 frames 0.002-0.12.
+constexpr double kBendingWarningShare = 0.1;
+/// The warning for a frame's bending summary, or "" for none.
+std::string frame_bending_warning(double share_over_2, double max);
+
 Background frame_background(const Frame& f, const LpcvtJob& job, nlohmann::json& report,
                             const std::function<void(const std::string&)>& log = {});
 /// The thesis's validation background: the saddle metric (eq. 6.1) on [-1.3,1.3]^2 over a

@@ -144,6 +144,38 @@ for f in iso L; do
 done
 $PY -c "import json,sys; s=json.load(open(sys.argv[1]))['frame_span']; assert s['warning'] is None and s['cells_across_long_axis'] >= 20, s" "$T/iso-tri.json"
 
+# 6b. rows too short to keep the frame's lengths (a review, session 35): at most 3.65 target cells
+#    along a chord at 30 degrees, stretch 300 (4.3 across the extent, above the first warning), where the
+#    chain got 74 % of its edges in band; none at 7.75 cells (stretch 50, 0 degrees: 99 %)
+$FRAME "$T/short.msh" --n 16 --h1 0.158 --h2 0.000527 --theta 0.5236
+lpcvt "$T/short.msh" -o "$T/short-tri.msh" --max-cycles 1 --max-iterations 5 2> "$T/short.err"
+grep -q "warning: $T/short.msh: the frame asks for only 3.[0-9]*e+00 cells along its long axis across the domain (stretch 2.998e+02)" "$T/short.err" ||
+  { cat "$T/short.err"; echo "FAIL: no warning on rows too short"; exit 1; }
+# the chords through the cells' centroids: 3.65 through the centre, shorter towards the corners
+$PY -c "import json,sys; s=json.load(open(sys.argv[1]))['frame_span']; assert 3.2 < s['cells_along_chord'] < 3.66 and s['cells_across_long_axis'] > 4, s" "$T/short-tri.json"
+$FRAME "$T/long.msh" --n 16 --h1 0.0645 --h2 0.00129
+lpcvt "$T/long.msh" -o "$T/long-tri.msh" --max-cycles 1 --max-iterations 5 2> "$T/long.err"
+! grep -q "cells along its long axis" "$T/long.err" || { cat "$T/long.err"; echo "FAIL: warned at 7.75 cells"; exit 1; }
+$PY -c "import json,sys; s=json.load(open(sys.argv[1]))['frame_span']; assert s['warning'] is None and abs(s['cells_along_chord'] - 7.75) < 0.01, s" "$T/long-tri.json"
+
+# 6c. rows that bend faster than lpcvt's cells follow (frame/bending.hpp; docs/quad-quality.md
+#    "Curved anisotropy"): a quarter-circle layer of stretch 100, h1 = 0.05 along it (39 % of the
+#    edges in band) warns with the share and the bending number; issue #14's band (stretch 10,
+#    h1 = 0.02: 98 %) does not
+$FRAME "$T/bent.msh" --n 48 --kind band --stretch 100 --h1 0.05
+lpcvt "$T/bent.msh" -o "$T/bent-tri.msh" --max-cycles 1 --max-iterations 5 2> "$T/bent.err"
+grep -q "warning: $T/bent.msh: the frame's rows bend fast: on [0-9]* % of its cells .*kappa h1^2/h2 > 2, up to" "$T/bent.err" ||
+  { cat "$T/bent.err"; echo "FAIL: no warning on a bent layer"; exit 1; }
+$FRAME "$T/band.msh" --n 48 --kind band --stretch 10 --h1 0.02
+lpcvt "$T/band.msh" -o "$T/band-tri.msh" --max-cycles 1 --max-iterations 5 2> "$T/band.err"
+! grep -q "rows bend" "$T/band.err" || { cat "$T/band.err"; echo "FAIL: issue 14's band warned"; exit 1; }
+$PY - "$T/bent-tri.json" "$T/band-tri.json" <<'PY'
+import json, sys
+b, g = (json.load(open(p))["frame_bending"] for p in sys.argv[1:])
+assert b["share_over_2"] > 0.3 and b["max"] > 5 and "rows bend" in b["warning"], b
+assert g["share_over_2"] == 0 and g["max"] < 1 and g["warning"] is None, g
+PY
+
 # 7. a real PHiLiP frame, read as it is (short run)
 D=$QUADAPT_FIXTURES_DIR
 if [ -f "$D/input_ss15_fb_p1_3.msh" ]; then
