@@ -80,6 +80,15 @@ constexpr double kMinCellsAlongChord = 6;
 /// change), else for one below kMinCellsAlongChord, or "" for none.
 std::string frame_span_warning(const FrameSpan& s);
 
+/// Above this share of the target cells with a bending number over 2 (frame/bending.hpp, on the
+/// frame lpcvt meshes, after its smoothing), the frame's rows bend faster than lpcvt's cells can
+/// follow: on a quarter-circle layer (radius 0.6, h1 = 0.05, 48 x 48 background) shares of 0 / 0 /
+/// 0.28 / 0.43 at stretch 10 / 20 / 50 / 100 gave 93 / 84 / 74 / 39 % of the edges in band (h1 = 0.02,
+/// stretch 100: 0.34, 69 %); PHiLiP's step-3 frames and the studies' loop frames have at most 0.003.
+constexpr double kBendingWarningShare = 0.1;
+/// The warning for a frame's bending summary, or "" for none.
+std::string frame_bending_warning(double share_over_2, double max);
+
 /// The background of a frame: M_eff = scale * M, then --smooth/--gradation/--orientation, the complexity
 /// rescale and the cells-per-triangle factor. Writes report keys smoothing, gradation,
 /// orientation, frame_cells, complexity, degree, metric_rescale, target_cells, cells_per_triangle,
@@ -87,15 +96,6 @@ std::string frame_span_warning(const FrameSpan& s);
 /// null), frame_bending (share_over_1, share_over_2, max, warning or null) and
 /// options.metric_scale, options.cells. The saddle background's default is Euclidean cells
 /// (set job.metric_cells = false for the thesis's validation, as the tool does). Throws InputError for inconsistent options.
-/// Above this share of the target cells with a bending number over 2 (frame/bending.hpp), the
-/// frame's rows bend faster than lpcvt's cells can follow: on a quarter-circle layer (radius 0.6,
-/// 48 x 48 background) shares of 0 / 0 / 0.67 / 0.84 at stretch 10 / 20 / 50 / 100 (h1 = 0.05) gave
-/// 93 / 84 / 74 / 39 % of the edges in band; the studies' loop frames have at most 0.02 (unweighted),
-/// PHiLiP's step-3 frames 0.002-0.12.
-constexpr double kBendingWarningShare = 0.1;
-/// The warning for a frame's bending summary, or "" for none.
-std::string frame_bending_warning(double share_over_2, double max);
-
 Background frame_background(const Frame& f, const LpcvtJob& job, nlohmann::json& report,
                             const std::function<void(const std::string&)>& log = {});
 /// The thesis's validation background: the saddle metric (eq. 6.1) on [-1.3,1.3]^2 over a
