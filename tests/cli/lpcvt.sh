@@ -176,6 +176,12 @@ assert b["share_over_2"] > 0.3 and b["max"] > 5 and "rows bend" in b["warning"],
 assert g["share_over_2"] == 0 and g["max"] < 1 and g["warning"] is None, g
 PY
 
+# 6d. a frame whose cells are larger than the domain asks for 0.0025 cells: the count warning
+#    says so (it printed "the frame's 0" before session 35)
+$FRAME "$T/huge.msh" --n 4 --h1 10 --h2 10
+lpcvt "$T/huge.msh" -o "$T/huge-tri.msh" 2> "$T/huge.err"
+grep -q "cells after recombine for the frame's 0.0025 (ratio " "$T/huge.err" || { cat "$T/huge.err"; echo "FAIL: count warning"; exit 1; }
+
 # 7. a real PHiLiP frame, read as it is (short run)
 D=$QUADAPT_FIXTURES_DIR
 if [ -f "$D/input_ss15_fb_p1_3.msh" ]; then
