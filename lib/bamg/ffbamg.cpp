@@ -64,31 +64,25 @@ std::string cause_in(const fs::path& log) {
   if (cause.size() > 160) cause = cause.substr(0, 157) + "...";
   return cause;
 }
-/// BAMG works in a frame near the origin of about unit size: a unit square moved to
-/// [1e6, 1e6 + 1]^2 made ffbamg abort ("Fatal error in the mesh generator 1001") on its second
-/// calibration run (a review, session 35). So a box far from the origin (its centre more than 4
-/// extents away) or of an extent outside [1/16, 16] is written as x' = (x - shift) / scale:
-/// scale the extent rounded up to a power of two (exact), shift its lower corner rounded down to
-/// a multiple of scale (x - shift exact), so that an exact translation by a multiple of scale
-/// gives ffbamg the same bytes. Other boxes are written as they are (bit for bit as before).
-/// Metrics carry scale^2 (lengths shrink by scale).
-struct Normalisation {
-  Vec2 shift = Vec2::Zero();
-  double scale = 1;
-};
-
-Normalisation normalisation(const std::vector<Vec2>& v) {
-  Normalisation n;
-  if (v.empty()) return n;
+/// BAMG works in a frame near the origin: a unit square moved to [1e6, 1e6 + 1]^2 made ffbamg
+/// abort ("Fatal error in the mesh generator 1001") on its second calibration run (a review,
+/// session 35). So a coordinate whose centre lies more than 4 extents from 0 is written shifted,
+/// x' = x - shift, shift a multiple of the extent rounded up to a power of two (x - shift exact,
+/// and an exact translation by such a multiple gives ffbamg the same bytes); other coordinates
+/// are written as they are (bit for bit as before). No scaling: ffbamg writes ~12 significant
+/// digits, so a scaled unit would move wall nodes off a wall at x = 1e6 by 3e-7 (a review);
+/// shifted, the output keeps the digits it had at the origin.
+Vec2 bamg_shift(const std::vector<Vec2>& v) {
+  if (v.empty()) return Vec2::Zero();
   Vec2 lo = v[0], hi = v[0];
   for (const auto& x : v) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
   const double extent = (hi - lo).maxCoeff();
-  if (!(extent > 0) || !std::isfinite(extent)) return n;
-  const double far = (0.5 * (lo + hi)).cwiseAbs().maxCoeff() / extent;
-  if (far <= 4 && extent >= 1.0 / 16 && extent <= 16) return n;
-  n.scale = std::exp2(std::ceil(std::log2(extent)));
-  if (far > 4) n.shift = Vec2(n.scale * std::floor(lo.x() / n.scale), n.scale * std::floor(lo.y() / n.scale));
-  return n;
+  if (!(extent > 0) || !std::isfinite(extent)) return Vec2::Zero();
+  const double unit = std::exp2(std::ceil(std::log2(extent)));
+  Vec2 shift = Vec2::Zero();
+  for (int k = 0; k < 2; ++k)
+    if (std::abs(0.5 * (lo[k] + hi[k])) > 4 * extent) shift[k] = unit * std::floor(lo[k] / unit);
+  return shift;
 }
 }  // namespace
 
@@ -105,18 +99,15 @@ FfbamgResult run_ffbamg(const InriaMesh& background, const std::vector<Eigen::Ma
   TempDir dir;
   const fs::path bg = dir.file("background.mesh"), mtr = dir.file("background.mtr"), out = dir.file("out.mesh"),
                  log = dir.file("ffbamg.log");
-  const Normalisation nz = normalisation(background.vertices);
-  if (nz.scale == 1 && nz.shift == Vec2::Zero()) {
+  const Vec2 shift = bamg_shift(background.vertices);
+  if (shift == Vec2::Zero()) {
     write_inria_mesh(background, bg.string());
-    write_bamg_metric(metric, mtr.string());
   } else {
     InriaMesh b = background;
-    for (auto& x : b.vertices) x = (x - nz.shift) / nz.scale;
-    std::vector<Eigen::Matrix2d> m = metric;
-    for (auto& t : m) t *= nz.scale * nz.scale;
+    for (auto& x : b.vertices) x -= shift;
     write_inria_mesh(b, bg.string());
-    write_bamg_metric(m, mtr.string());
   }
+  write_bamg_metric(metric, mtr.string());
 
   std::vector<std::string> args = {exe, "-b", bg.string(), "-M", mtr.string(), "-o", out.string(),
                                    "-nbv", std::to_string(opt.max_vertices), "-v", "1",
@@ -146,7 +137,8 @@ FfbamgResult run_ffbamg(const InriaMesh& background, const std::vector<Eigen::Ma
     throw ExternalError(std::string("ffbamg wrote an unreadable mesh: ") + e.what());
   }
   if (res.mesh.triangles.empty()) throw ExternalError("ffbamg produced no triangles: " + cause_in(log));
-  for (auto& x : res.mesh.vertices) x = nz.shift + nz.scale * x;
+  if (shift != Vec2::Zero())
+    for (auto& x : res.mesh.vertices) x += shift;
   return res;
 }
 

@@ -272,7 +272,7 @@ FrameSpan frame_span(const Background& bg) {
 
 std::string frame_span_warning(const FrameSpan& s) {
   if (!(s.cells_across < kMinCellsAcross)) {
-    if (!(s.cells_along_chord < kMinCellsAlongChord)) return "";
+    if (!(s.cells_along_chord < kMinCellsAlongChord) || !(s.stretch >= kMinRowStretch)) return "";
     return "the frame asks for only " + sci(s.cells_along_chord) +
            " cells along its long axis across the domain (stretch " + sci(s.stretch) + "), fewer than " +
            sci(kMinCellsAlongChord) +

@@ -157,6 +157,11 @@ $FRAME "$T/long.msh" --n 16 --h1 0.0645 --h2 0.00129
 lpcvt "$T/long.msh" -o "$T/long-tri.msh" --max-cycles 1 --max-iterations 5 2> "$T/long.err"
 ! grep -q "cells along its long axis" "$T/long.err" || { cat "$T/long.err"; echo "FAIL: warned at 7.75 cells"; exit 1; }
 $PY -c "import json,sys; s=json.load(open(sys.argv[1]))['frame_span']; assert s['warning'] is None and abs(s['cells_along_chord'] - 7.75) < 0.01, s" "$T/long-tri.json"
+# ... nor on a nearly isotropic frame with 5 cells along a chord (it keeps its quality there; kMinRowStretch)
+$FRAME "$T/iso5.msh" --n 16 --h1 0.1 --h2 0.05 --theta 0.3
+lpcvt "$T/iso5.msh" -o "$T/iso5-tri.msh" --max-cycles 1 --max-iterations 5 2> "$T/iso5.err"
+! grep -q "cells along its long axis" "$T/iso5.err" || { cat "$T/iso5.err"; echo "FAIL: warned at stretch 2"; exit 1; }
+$PY -c "import json,sys; s=json.load(open(sys.argv[1]))['frame_span']; assert s['cells_along_chord'] < 6 and s['warning'] is None, s" "$T/iso5-tri.json"
 
 # 6c. rows that bend faster than lpcvt's cells follow (frame/bending.hpp; docs/quad-quality.md
 #    "Curved anisotropy"): a quarter-circle layer of stretch 100, h1 = 0.05 along it (39 % of the

@@ -64,4 +64,24 @@ if d > 1e-5:
 print(f"placement: chain {json.load(open('mq0.json'))['cells']} cells, bamgquad {len(p)} nodes; "
       f"bamgquad nodes within {d:.1e} of the moved ones")
 PY
+
+# a box of extent 1e6 at the origin: ffbamg's coordinates as they are (it writes ~12 digits: a
+# scaled copy, tried in session 35, put wall nodes at x = 999999.9999997), so every wall node
+# lies exactly on its wall
+$PY "$SRC/tests/cli/lpcvt_frame.py" big.msh --n 16 --h1 50000 --h2 5000 --theta 0.5236 --box 0 1000000 0 1000000
+bamgquad -q big.msh -o bigq.msh
+$PY - <<'PY'
+import sys
+lines = open("bigq.msh").read().split("\n")
+i = lines.index("$Nodes"); nblocks = int(lines[i + 1].split()[0]); k = i + 2; xy = []
+for _ in range(nblocks):
+    n = int(lines[k].split()[3]); k += 1 + n
+    xy += [tuple(map(float, lines[k + j].split()[:2])) for j in range(n)]; k += n
+near = [v for p in xy for v in p if 0 < abs(v - 1e6) < 1 or 0 < abs(v) < 1e-6]
+if near:
+    print(f"FAIL: {len(near)} coordinates off the walls of [0, 1e6]^2, e.g. {near[0]!r}", file=sys.stderr); sys.exit(1)
+on = sum(1 for p in xy for v in p if v in (0.0, 1e6))
+if on < 40:
+    print(f"FAIL: only {on} wall coordinates", file=sys.stderr); sys.exit(1)
+PY
 echo "placement: OK"
