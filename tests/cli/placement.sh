@@ -27,18 +27,14 @@ for X in 0 10000000; do
   meshquality b$X.msh --frame f$X.msh > bq$X.json
 done
 
-$PY - <<'PY'
+$PY - "$SRC" <<'PY'
 import json, sys
+sys.path.insert(0, sys.argv[1] + "/tests/cli")
+from golden_compare import read_msh
 def fail(m):
     print("FAIL: " + m, file=sys.stderr); sys.exit(1)
 def read_nodes(path):
-    lines = open(path).read().split("\n")
-    i = lines.index("$Nodes")
-    nblocks = int(lines[i + 1].split()[0]); k = i + 2; xy = []
-    for _ in range(nblocks):
-        n = int(lines[k].split()[3]); k += 1 + n
-        xy += [tuple(map(float, lines[k + j].split()[:2])) for j in range(n)]; k += n
-    return xy
+    return [tuple(x[:2]) for x in read_msh(path)["nodes"]]
 for name in ("mq", "bq"):
     a, b = json.load(open(f"{name}0.json")), json.load(open(f"{name}10000000.json"))
     for key in ("cells", "nodes", "irregular_interior_vertices"):
@@ -70,13 +66,11 @@ PY
 # lies exactly on its wall
 $PY "$SRC/tests/cli/lpcvt_frame.py" big.msh --n 16 --h1 50000 --h2 5000 --theta 0.5236 --box 0 1000000 0 1000000
 bamgquad -q big.msh -o bigq.msh
-$PY - <<'PY'
+$PY - "$SRC" <<'PY'
 import sys
-lines = open("bigq.msh").read().split("\n")
-i = lines.index("$Nodes"); nblocks = int(lines[i + 1].split()[0]); k = i + 2; xy = []
-for _ in range(nblocks):
-    n = int(lines[k].split()[3]); k += 1 + n
-    xy += [tuple(map(float, lines[k + j].split()[:2])) for j in range(n)]; k += n
+sys.path.insert(0, sys.argv[1] + "/tests/cli")
+from golden_compare import read_msh
+xy = [tuple(x[:2]) for x in read_msh("bigq.msh")["nodes"]]
 near = [v for p in xy for v in p if 0 < abs(v - 1e6) < 1 or 0 < abs(v) < 1e-6]
 if near:
     print(f"FAIL: {len(near)} coordinates off the walls of [0, 1e6]^2, e.g. {near[0]!r}", file=sys.stderr); sys.exit(1)
