@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
+#include <queue>
+#include <utility>
 
 #include "core/error.hpp"
 #include "frame/frame.hpp"
@@ -161,16 +162,24 @@ FilterReport grade_metric(Background& bg, double beta) {
     A[c] = M0[c].transpose() * M0[c];
     g[c] = cell_centroid(bg.mesh(), c);
   }
-  // Worklist: a cell whose metric changed re-imposes its bound on its neighbours.
-  std::vector<char> changed(n, 0), queued(n, 1);
-  std::deque<int> work;
-  for (int c = 0; c < n; ++c) work.push_back(c);
+  // Finest first (Dijkstra's order): the cell of largest det 𝓜 (smallest area) imposes its bound
+  // on its neighbours; a neighbour that changed is queued again with its new key. The order then
+  // depends on the metrics alone, not on the cells' numbering: the intersection is not
+  // associative, so a numbering-seeded worklist gave another frame for a turned or mirrored
+  // frame, whose canonical order differs. Ties (equal det) go to the lower index.
+  using Key = std::pair<double, int>;
+  auto later = [](const Key& a, const Key& b) { return a.first < b.first || (a.first == b.first && a.second > b.second); };
+  std::priority_queue<Key, std::vector<Key>, decltype(later)> work(later);
+  std::vector<char> changed(n, 0);
+  std::vector<double> key(n);
+  for (int c = 0; c < n; ++c) work.push({key[c] = A[c].determinant(), c});
   long updates = 0;
   const long max_updates = 200L * n + 1000;
   while (!work.empty() && updates < max_updates) {
-    const int c = work.front();
-    work.pop_front();
-    queued[c] = 0;
+    const auto [k, c] = work.top();
+    work.pop();
+    if (k != key[c]) continue;  // a stale entry: c changed and was queued again
+    key[c] = -1;                // done until it changes again
     for (int j : nb[c]) {
       const Vec2 d = g[j] - g[c];
       const double l = std::sqrt(d.dot(A[c] * d));
@@ -180,10 +189,7 @@ FilterReport grade_metric(Background& bg, double beta) {
         A[j] = I;
         changed[j] = 1;
         ++updates;
-        if (!queued[j]) {
-          queued[j] = 1;
-          work.push_back(j);
-        }
+        work.push({key[j] = A[j].determinant(), j});
       }
     }
   }

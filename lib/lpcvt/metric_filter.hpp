@@ -24,7 +24,9 @@
 // (1 + l ln beta): sizes grow by about beta per unit metric length (per element). ∩ is the
 // metric intersection (largest ellipse inside both, by simultaneous reduction). A worklist
 // re-imposes the bounds of every cell that changed on its neighbours until nothing changes by
-// more than 1e-9 (relative; at most 200 updates per cell). Intersection only
+// more than 1e-9 (relative; at most 200 updates per cell), taking the finest cell first (largest
+// det 𝓜, ties to the lower index), so the result depends on the metrics, not on the numbering:
+// a turned or mirrored frame grades to the turned or mirrored metrics. Intersection only
 // refines; the uniform rescale afterwards restores the point count. The frame is rebuilt from
 // 𝓜 as for the smoothing.
 #include <optional>
