@@ -19,38 +19,11 @@ trap 'rm -rf "$T"' EXIT
 export OMP_NUM_THREADS=1
 F="$SRC/tests/fixtures/philip/input_ss15_fb_p1_3.msh"
 
-# the frame re-written (MSH 2.2, quads and Vinv) as base, rot and mir
-$PY - "$F" "$T" "$SRC" <<'PY'
-import os, sys
-F, T, SRC = sys.argv[1:4]
-sys.path.insert(0, os.path.join(SRC, "tests", "cli"))
-from golden_compare import read_msh  # noqa: E402
-m = read_msh(F)
-quads, V = m["elements"][3], m["views"]["Vinv"]["values"]
-if len(V) != len(quads):
-    sys.exit(f"FAIL: {F}: {len(V)} Vinv values for {len(quads)} quads")
-def write(name, point, vinv, reverse):
-    with open(f"{T}/{name}.msh", "w") as f:
-        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(m["nodes"]))
-        for k, p in enumerate(m["nodes"]):
-            x, y = point(p[0], p[1])
-            f.write(f"{k + 1} {x!r} {y!r} 0\n")
-        f.write("$EndNodes\n$Elements\n%d\n" % len(quads))
-        for e, q in enumerate(quads):
-            q = q[::-1] if reverse else q
-            f.write(f"{e + 1} 3 2 0 1 " + " ".join(str(v + 1) for v in q) + "\n")
-        f.write('$EndElements\n$ElementData\n1\n"Vinv"\n1\n0.0\n3\n0\n9\n%d\n' % len(quads))
-        for e in range(len(quads)):
-            a = V[(3, e)]
-            M = [[a[0], a[1]], [a[3], a[4]]]
-            W = vinv(M)
-            f.write(f"{e + 1} {W[0][0]!r} {W[0][1]!r} 0 {W[1][0]!r} {W[1][1]!r} 0 0 0 1\n")
-        f.write("$EndElementData\n")
-# M' = M Q^T; rot: Q = [[0, -1], [1, 0]], so M' = [-M[:, 1], M[:, 0]]; mir: Q = diag(-1, 1)
-write("base", lambda x, y: (x, y), lambda M: M, False)
-write("rot", lambda x, y: (-y, x), lambda M: [[-M[0][1], M[0][0]], [-M[1][1], M[1][0]]], False)
-write("mir", lambda x, y: (-x, y), lambda M: [[-M[0][0], M[0][1]], [-M[1][0], M[1][1]]], True)
-PY
+# the frame re-written (MSH 2.2, cells and Vinv) as base, rot (r1) and mir (m0): tests/cli/frame_transform.py
+for sym in "id base" "r1 rot" "m0 mir"; do
+  set -- $sym
+  $PY "$SRC/tests/cli/frame_transform.py" "$F" "$T/$2.msh" "$1"
+done
 for n in base rot mir; do
   lpcvt -q "$T/$n.msh" --convention philip -o "$T/$n-tri.msh" --write-frame "$T/$n-frame.msh" \
     --max-iterations 1 --max-cycles 1 --report "$T/$n.json"

@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""Exact turns and mirrors of a frame file (the eight symmetries of the square).
+
+    frame_transform.py IN OUT SYMMETRY      SYMMETRY in id r1 r2 r3 m0 m1 m2 m3
+
+rK = a turn by K x 90 degrees about the origin, mK = the mirror x -> -x followed by rK. Each maps
+x -> Q x with Q's entries in {0, 1, -1}, so the coordinates are only swapped and negated: no
+rounding. The frame turns with the problem, M' = M Q^T (the same swaps and signs), so the
+Riemannian metric is M'^T M' = Q M^T M Q^T. A mirror reverses each cell's vertex list (the cells
+stay counter-clockwise). The output is MSH 2.2 with the background's cells and the cell view
+"Vinv" only (values written with repr: exact); the size convention is not written, so give it
+on the command line (lpcvt --convention philip for PHiLiP's frames). Used by
+tests/cli/lpcvt_graded_equivariance.sh and bench/quad/dihedral.py.
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from golden_compare import read_msh  # noqa: E402
+
+SYMMETRIES = ("id", "r1", "r2", "r3", "m0", "m1", "m2", "m3")
+
+
+def matrix(sym):
+    """Q (2 x 2 nested lists of ints) of a symmetry name"""
+    if sym not in SYMMETRIES:
+        raise ValueError(f"unknown symmetry {sym!r} (one of {', '.join(SYMMETRIES)})")
+    q = [[-1, 0], [0, 1]] if sym[0] == "m" else [[1, 0], [0, 1]]
+    for _ in range(0 if sym == "id" else int(sym[1])):
+        q = [[-q[1][0], -q[1][1]], [q[0][0], q[0][1]]]  # [[0, -1], [1, 0]] @ q
+    return q
+
+
+def apply(q, x, y):
+    """Q (x, y): exact, Q's entries being 0 and +-1"""
+    def dot(row):
+        terms = [c * v for c, v in zip(row, (x, y)) if c != 0]
+        return terms[0] + 0.0 if terms else 0.0  # + 0.0: no negative zeros
+    return dot(q[0]), dot(q[1])
+
+
+def transform(path, out, sym):
+    q = matrix(sym)
+    m = read_msh(path)
+    cells = [(t, c) for t in (2, 3) for c in m["elements"].get(t, [])]
+    view = m["views"].get("Vinv")
+    if view is None or len(view["values"]) != len(cells):
+        raise ValueError(f"{path}: expected one Vinv value per triangle or quad")
+    det = q[0][0] * q[1][1] - q[0][1] * q[1][0]
+    with open(out, "w") as f:
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(m["nodes"]))
+        for k, p in enumerate(m["nodes"]):
+            x, y = apply(q, p[0], p[1])
+            f.write(f"{k + 1} {x!r} {y!r} 0\n")
+        f.write("$EndNodes\n$Elements\n%d\n" % len(cells))
+        index = {2: 0, 3: 0}
+        keys = []
+        for e, (t, c) in enumerate(cells):
+            keys.append((t, index[t]))
+            index[t] += 1
+            c = c[::-1] if det < 0 else c
+            f.write(f"{e + 1} {t} 2 0 1 " + " ".join(str(v + 1) for v in c) + "\n")
+        f.write('$EndElements\n$ElementData\n1\n"Vinv"\n1\n0.0\n3\n0\n9\n%d\n' % len(cells))
+        for e, key in enumerate(keys):
+            a = view["values"][key]
+            # M' = M Q^T: row r of M' is (Q M_r)^T, M_r the row r of M
+            rows = [apply(q, a[0], a[1]), apply(q, a[3], a[4])]
+            f.write(f"{e + 1} {rows[0][0]!r} {rows[0][1]!r} 0 {rows[1][0]!r} {rows[1][1]!r} 0 0 0 1\n")
+        f.write("$EndElementData\n")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 4:
+        sys.exit(__doc__)
+    transform(*sys.argv[1:4])
