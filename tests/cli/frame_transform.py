@@ -7,9 +7,9 @@ rK = a turn by K x 90 degrees about the origin, mK = the mirror x -> -x followed
 x -> Q x with Q's entries in {0, 1, -1}, so the coordinates are only swapped and negated: no
 rounding. The frame turns with the problem, M' = M Q^T (the same swaps and signs), so the
 Riemannian metric is M'^T M' = Q M^T M Q^T. A mirror reverses each cell's vertex list (the cells
-stay counter-clockwise). The output is MSH 2.2 with the background's cells and the cell view
-"Vinv" only (values written with repr: exact); the size convention is not written, so give it
-on the command line (lpcvt --convention philip for PHiLiP's frames). Used by
+stay counter-clockwise). The output is MSH 2.2 with the background's cells, the cell view
+"Vinv" (values written with repr: exact) and the file's $FrameConvention section when it has
+one (docs/file-formats.md; PHiLiP's files have none and stay PHiLiP's). Used by
 tests/cli/lpcvt_graded_equivariance.sh and bench/quad/dihedral.py.
 """
 import os
@@ -67,6 +67,10 @@ def transform(path, out, sym):
             rows = [apply(q, a[0], a[1]), apply(q, a[3], a[4])]
             f.write(f"{e + 1} {rows[0][0]!r} {rows[0][1]!r} 0 {rows[1][0]!r} {rows[1][1]!r} 0 0 0 1\n")
         f.write("$EndElementData\n")
+        text = open(path, encoding="utf-8", errors="replace").read()
+        a, b = text.find("$FrameConvention\n"), text.find("$EndFrameConvention")
+        if a >= 0 and b > a:
+            f.write(text[a:b] + "$EndFrameConvention\n")
 
 
 if __name__ == "__main__":
