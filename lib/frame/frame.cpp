@@ -197,7 +197,23 @@ std::vector<Mat2> Frame::at_cells(const Mesh& m, int* outside) const {
 int FrameSampler::cell(const Vec2& x, bool* inside) const {
   int c = locator_.locate(x);
   if (inside) *inside = c >= 0;
-  return c >= 0 ? c : locator_.locate_or_nearest(x);
+  if (c < 0) return locator_.locate_or_nearest(x);
+  if (locator_.well_inside(c, x)) return c;
+  // On an edge or a vertex shared by cells: the finest of them (largest |det M|; equal: the lowest
+  // index). The lowest index alone followed the canonical order (x, then y), which a turned or
+  // mirrored frame does not share: quadsmooth's wall nodes on a background vertex took another
+  // cell's metric in the turned problem (docs/quad-quality.md, "Turned and mirrored graded frames").
+  std::vector<int> all;
+  locator_.locate_all(x, all);
+  double best = std::abs(oriented_[c].determinant());
+  for (int d : all) {
+    const double det = std::abs(oriented_[d].determinant());
+    if (det > best || (det == best && d < c)) {
+      best = det;
+      c = d;
+    }
+  }
+  return c;
 }
 
 }  // namespace quadapt

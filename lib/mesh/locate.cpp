@@ -117,6 +117,15 @@ int CellLocator::locate(const Vec2& x) const {
   return -1;
 }
 
+void CellLocator::locate_all(const Vec2& x, std::vector<int>& out) const {
+  out.clear();
+  if (m_.cells.empty()) return;
+  const double fx = (x.x() - lo_.x()) / cell_size_.x(), fy = (x.y() - lo_.y()) / cell_size_.y();
+  if (fx < -1e-9 || fy < -1e-9 || fx > nx_ + 1e-9 || fy > ny_ + 1e-9) return;
+  for (int c : candidates(static_cast<size_t>(by(x.y())) * nx_ + bx(x.x()), x))
+    if (inside(c, x)) out.push_back(c);
+}
+
 int CellLocator::locate_or_nearest(const Vec2& x) const {
   int c = locate(x);
   if (c >= 0 || m_.cells.empty()) return c;

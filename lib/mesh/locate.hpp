@@ -17,6 +17,9 @@ class CellLocator {
   explicit CellLocator(const Mesh& m);
   /// A cell containing x (on a shared edge: one of them), or -1 when x is outside the mesh.
   int locate(const Vec2& x) const;
+  /// Every cell containing x (closed cells: on a shared edge both, at a shared vertex all), in
+  /// ascending order, into `out` (cleared first).
+  void locate_all(const Vec2& x, std::vector<int>& out) const;
   /// The cell containing x, else the cell whose boundary is nearest to x.
   int locate_or_nearest(const Vec2& x) const;
   /// Whether x lies in cell c's interior away from its edges: at a distance above 1e-9 times each

@@ -8,8 +8,9 @@ x -> Q x with Q's entries in {0, 1, -1}, so the coordinates are only swapped and
 rounding. The frame turns with the problem, M' = M Q^T (the same swaps and signs), so the
 Riemannian metric is M'^T M' = Q M^T M Q^T. A mirror reverses each cell's vertex list (the cells
 stay counter-clockwise). The output is MSH 2.2 with the background's cells, the cell view
-"Vinv" (values written with repr: exact) and the file's $FrameConvention section when it has
-one (docs/file-formats.md; PHiLiP's files have none and stay PHiLiP's). Used by
+"Vinv" when it has one (values written with repr: exact) and its $FrameConvention section
+(docs/file-formats.md; PHiLiP's files have none and stay PHiLiP's); the boundary is left to the
+reader, which completes it from the free edges. Used by
 tests/cli/lpcvt_graded_equivariance.sh and bench/quad/dihedral.py.
 """
 import os
@@ -43,8 +44,8 @@ def transform(path, out, sym):
     q = matrix(sym)
     m = read_msh(path)
     cells = [(t, c) for t in (2, 3) for c in m["elements"].get(t, [])]
-    view = m["views"].get("Vinv")
-    if view is None or len(view["values"]) != len(cells):
+    view = m["views"].get("Vinv")  # a mesh without a frame (a quad mesh) is turned too
+    if view is not None and len(view["values"]) != len(cells):
         raise ValueError(f"{path}: expected one Vinv value per triangle or quad")
     det = q[0][0] * q[1][1] - q[0][1] * q[1][0]
     with open(out, "w") as f:
@@ -60,7 +61,10 @@ def transform(path, out, sym):
             index[t] += 1
             c = c[::-1] if det < 0 else c
             f.write(f"{e + 1} {t} 2 0 1 " + " ".join(str(v + 1) for v in c) + "\n")
-        f.write('$EndElements\n$ElementData\n1\n"Vinv"\n1\n0.0\n3\n0\n9\n%d\n' % len(cells))
+        f.write("$EndElements\n")
+        if view is None:
+            return
+        f.write('$ElementData\n1\n"Vinv"\n1\n0.0\n3\n0\n9\n%d\n' % len(cells))
         for e, key in enumerate(keys):
             a = view["values"][key]
             # M' = M Q^T: row r of M' is (Q M_r)^T, M_r the row r of M

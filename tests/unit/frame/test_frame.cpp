@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -130,6 +131,31 @@ TEST_CASE("sampler: M of the containing cell, the nearest outside") {
   CHECK(s.at(Vec2(0.75, 0.5)) == M[1]);
   CHECK(s.cell(Vec2(1.5, 0.5), &inside) == 1);
   CHECK_FALSE(inside);
+}
+
+TEST_CASE("sampler: on a shared edge or vertex, the finest cell's M, whatever the cells' order") {
+  // 2 x 2 cells with four different sizes; the shared edges and the middle vertex are sampled in
+  // the background as built and with its cells in reverse order: the same M (before: the lowest
+  // index, so the reversed background gave the other side's M)
+  Mesh m = make_structured_quads(2, 2);
+  std::vector<Mat2> M = {1.0 * Mat2::Identity(), 3.0 * Mat2::Identity(), 2.0 * Mat2::Identity(),
+                         4.0 * Mat2::Identity()};
+  Mesh r = m;
+  std::reverse(r.cells.begin(), r.cells.end());
+  std::vector<Mat2> Mr(M.rbegin(), M.rend());
+  set_frame_field(m, M);
+  set_frame_field(r, Mr);
+  const Frame f = frame_from_mesh(m, "a"), g = frame_from_mesh(r, "b");
+  const FrameSampler a(f), b(g);
+  // cells: 0 (lower left, 1), 1 (lower right, 3), 2 (upper left, 2), 3 (upper right, 4)
+  const std::vector<std::pair<Vec2, double>> points = {
+      {Vec2(0.5, 0.25), 3}, {Vec2(0.25, 0.5), 2}, {Vec2(0.75, 0.5), 4}, {Vec2(0.5, 0.5), 4}, {Vec2(0.5, 0), 3}};
+  for (const auto& [x, scale] : points) {
+    CHECK(a.at(x) == scale * Mat2::Identity());
+    CHECK(b.at(x) == scale * Mat2::Identity());
+    int h = -1;
+    CHECK(a.at(x, h) == scale * Mat2::Identity());
+  }
 }
 
 TEST_CASE("FrameSampler::at with a hint: the same M as without, along a walk through the cells") {

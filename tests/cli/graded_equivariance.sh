@@ -1,18 +1,28 @@
 #!/usr/bin/env bash
-# CLI test: lpcvt's frame filters do not depend on the coordinate axes on a graded frame.
+# CLI test: on a graded frame, lpcvt's frame filters and quadsmooth do not depend on the axes.
 # PHiLiP's ss15_fb_p1 step-3 frame (rough: its neighbouring cells differ by up to 68x), turned by
 # 90 degrees ((x, y) -> (-y, x)) and mirrored ((x, y) -> (-x, y)) — both exact in floating point,
-# the frame M turned with them (M' = M Q^T: entries swapped and negated, no rounding). The frame
-# lpcvt actually meshes (`--write-frame`: after the smoothing, the gradation and the rescale) must
-# be the turned / mirrored one, M'^T M' = Q M^T M Q^T to 1e-9 (relative) in every cell.
-# The turned and mirrored frames have another canonical order (mesh/canonical.hpp sorts nodes by
-# x, then y): before the gradation took the finest cell first (metric_filter.hpp), its worklist
-# followed that order and the graded frames differed by up to 21 % (57 % in test_fast's rougher frame).
+# the frame M turned with them (M' = M Q^T: entries swapped and negated, no rounding;
+# tests/cli/frame_transform.py). docs/quad-quality.md, "Turned and mirrored graded frames".
+#  1. The frame lpcvt actually meshes (`--write-frame`: after the smoothing, the gradation and the
+#     rescale) must be the turned / mirrored one, M'^T M' = Q M^T M Q^T to 1e-9 (relative) in
+#     every cell. The turned and mirrored frames have another canonical order (mesh/canonical.hpp
+#     sorts nodes by x, then y): before the gradation took the finest cell first
+#     (metric_filter.hpp), its worklist followed that order and the graded frames differed by up
+#     to 21 % (57 % in test_fast's rougher frame).
+#  2. quadsmooth given the turned / mirrored quad mesh and frame must give the turned / mirrored
+#     mesh, to 1e-10 of the domain. Before the frame sampler took the finest of the cells that
+#     share an edge or vertex (frame.hpp FrameSampler), a wall node on a background vertex took
+#     the lowest-numbered cell's metric, and the nodes differed by 3e-2 (turn) and 6e-2 (mirror).
+# (lpcvt's points themselves are not compared: the lattice start under a mirror and the count's
+# near-ties under a turn still differ, the same docs section.)
 set -euo pipefail
 SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
 BIN=${QUADAPT_BIN_DIR:-}
 [ -n "$BIN" ] && PATH="$BIN:$PATH"
-command -v lpcvt >/dev/null || { echo "FAIL: lpcvt not built (tools must be on PATH)" >&2; exit 1; }
+for t in lpcvt recombine quadsmooth; do
+  command -v $t >/dev/null || { echo "FAIL: $t not built (tools must be on PATH)" >&2; exit 1; }
+done
 PY=/usr/bin/python3; [ -x $PY ] || PY=python3
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
@@ -27,6 +37,13 @@ done
 for n in base rot mir; do
   lpcvt -q "$T/$n.msh" --convention philip -o "$T/$n-tri.msh" --write-frame "$T/$n-frame.msh" \
     --max-iterations 1 --max-cycles 1 --report "$T/$n.json"
+done
+# 2.: the base run's quads, turned and mirrored exactly, smoothed in each frame
+recombine -q "$T/base-tri.msh" -o "$T/base-quad.msh"
+for sym in "id base" "r1 rot" "m0 mir"; do
+  set -- $sym
+  $PY "$SRC/tests/cli/frame_transform.py" "$T/base-quad.msh" "$T/$2-q.msh" "$1"
+  quadsmooth -q "$T/$2-q.msh" --frame "$T/$2.msh" -o "$T/$2-smooth.msh"
 done
 
 $PY - "$T" "$SRC" <<'PY'
@@ -68,4 +85,16 @@ for name, q in Q.items():
         fail(f"{name}: the frame lpcvt meshed is not the {name} of the original's "
              f"({int((rel > 1e-9).sum())} cells differ, by up to {100 * rel.max():.1f} %)")
 print("ok: the graded frame turns and mirrors with the problem")
+x0 = np.array(read_msh(f"{T}/base-smooth.msh")["nodes"])[:, :2]
+span = np.ptp(x0, axis=0).max()
+for name, q in Q.items():
+    x = np.array(read_msh(f"{T}/{name}-smooth.msh")["nodes"])[:, :2] @ q  # mapped back
+    if len(x) != len(x0):
+        fail(f"quadsmooth {name}: {len(x)} nodes, the original {len(x0)}")
+    d = np.sqrt(((x0[:, None, :] - x[None, :, :]) ** 2).sum(-1)).min(axis=1)
+    print(f"quadsmooth {name}: largest node distance {d.max() / span:.2e} of the domain")
+    if d.max() > 1e-10 * span:
+        fail(f"quadsmooth {name}: the smoothed mesh is not the {name} of the original's "
+             f"({int((d > 1e-10 * span).sum())} nodes off, by up to {d.max() / span:.2e} of the domain)")
+print("ok: quadsmooth's mesh turns and mirrors with the problem")
 PY
