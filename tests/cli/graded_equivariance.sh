@@ -18,14 +18,11 @@
 # near-ties under a turn still differ, the same docs section.)
 set -euo pipefail
 SRC=${QUADAPT_SOURCE_DIR:-$(cd "$(dirname "$0")/../.." && pwd)}
-BIN=${QUADAPT_BIN_DIR:-}
-[ -n "$BIN" ] && PATH="$BIN:$PATH"
-for t in lpcvt recombine quadsmooth; do
-  command -v $t >/dev/null || { echo "FAIL: $t not built (tools must be on PATH)" >&2; exit 1; }
-done
+QUADAPT_SOURCE_DIR=$SRC
+. "$SRC/tests/cli/lib/assert.sh"
+[ -n "${QUADAPT_BIN_DIR:-}" ] && PATH="$(cd "$QUADAPT_BIN_DIR" && pwd):$PATH"
+in_temp_dir
 PY=/usr/bin/python3; [ -x $PY ] || PY=python3
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
 export OMP_NUM_THREADS=1
 F="$SRC/tests/fixtures/philip/input_ss15_fb_p1_3.msh"
 
