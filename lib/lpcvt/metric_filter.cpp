@@ -166,7 +166,10 @@ FilterReport grade_metric(Background& bg, double beta) {
   // on its neighbours; a neighbour that changed is queued again with its new key. The order then
   // depends on the metrics alone, not on the cells' numbering: the intersection is not
   // associative, so a numbering-seeded worklist gave another frame for a turned or mirrored
-  // frame, whose canonical order differs. Ties (equal det) go to the lower index.
+  // frame, whose canonical order differs. Ties (equal det) go to the lower index, so two different
+  // metrics of exactly equal det (diag(a, b) and diag(b, a)) are still taken in the numbering's
+  // order: a turned frame built of such cells can grade otherwise (PHiLiP's and the loops' frames
+  // have no such ties; a frame of identical cells is not affected).
   using Key = std::pair<double, int>;
   auto later = [](const Key& a, const Key& b) { return a.first < b.first || (a.first == b.first && a.second > b.second); };
   std::priority_queue<Key, std::vector<Key>, decltype(later)> work(later);

@@ -217,7 +217,7 @@ TEST_CASE("metric filters keep the point count; smoothing keeps a constant frame
 
 TEST_CASE("gradation does not depend on the cells' numbering (nor, so, on a turn of the frame)") {
   // A rough anisotropic frame (random size, stretch and angle per cell, no two cells alike) graded
-  // in its own cell order and in a shuffled one: the same metric in every cell. The canonical
+  // in its own cell order and in the reverse one: the same metric in every cell. The canonical
   // order (mesh/canonical.hpp) makes a file's numbering irrelevant, but a turned or mirrored
   // frame has another canonical order, so the gradation itself must not depend on the order.
   // A FIFO worklist seeded in index order (before) differed by up to tens of per cent.
