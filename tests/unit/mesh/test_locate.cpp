@@ -1,10 +1,12 @@
 // CellLocator (mesh/locate.hpp): on a strongly graded mesh, whose thin cells crowd a few buckets
 // into sub-grids, the cell found is the one a search of every cell finds — the lowest-numbered
-// cell containing x — also for points on shared edges and at shared vertices (ties).
+// cell containing x — also for points on shared edges and at shared vertices (ties) — and
+// locate_all lists every containing cell.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "mesh/locate.hpp"
 #include "mesh/mesh.hpp"
@@ -54,14 +56,19 @@ TEST_CASE("point location: a graded mesh's crowded buckets give the lowest-numbe
   std::uniform_real_distribution<double> ux(-0.05, 1.15), uy(0, 1);
   for (int k = 0; k < 4000; ++k) xs.push_back(Vec2(ux(rng), std::pow(uy(rng), 6)));  // dense near the wall
   int found = 0, ties = 0;
+  std::vector<int> all, want_all;
   for (const Vec2& x : xs) {
     const int want = first_containing(m, x);
     REQUIRE(loc.locate(x) == want);
+    // locate_all: every containing cell, ascending (FrameSampler chooses among them)
+    want_all.clear();
+    for (int c = 0; c < m.num_cells(); ++c)
+      if (inside_closed(m, c, x)) want_all.push_back(c);
+    loc.locate_all(x, all);
+    REQUIRE(all == want_all);
     if (want < 0) continue;
     ++found;
-    int n = 0;
-    for (int c = 0; c < m.num_cells(); ++c) n += inside_closed(m, c, x);
-    ties += n > 1;
+    ties += want_all.size() > 1;
   }
   CHECK(found > 10000);
   CHECK(ties > 3000);  // the shared vertices and edges were tested
