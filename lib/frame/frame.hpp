@@ -112,8 +112,9 @@ void write_frame(const Frame& f, const std::string& path, OutputBatch& batch);
 /// M at a point: the frame's M (oriented) of the background cell containing x — on an edge or a
 /// vertex shared by cells, the finest of them (largest |det M|, then the lowest index), a choice
 /// that turns and mirrors with the frame unless two different M there have exactly equal |det| —
-/// or of the nearest cell when x lies outside (equally near cells: the lowest index). Holds a reference to the frame. Throws InputError when the
-/// frame has no cells or not one M per background cell.
+/// or of the nearest cell when x lies outside (equally near cells: the lowest index). Holds a
+/// reference to the frame. Throws InputError when the frame has no cells or not one M per
+/// background cell.
 class FrameSampler {
  public:
   explicit FrameSampler(const Frame& f);
