@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <queue>
+#include <unordered_map>
 #include <utility>
 
 #include "core/error.hpp"
@@ -166,35 +167,91 @@ FilterReport grade_metric(Background& bg, double beta) {
   // on its neighbours; a neighbour that changed is queued again with its new key. The order then
   // depends on the metrics alone, not on the cells' numbering: the intersection is not
   // associative, so a numbering-seeded worklist gave another frame for a turned or mirrored
-  // frame, whose canonical order differs. Ties (equal det) go to the lower index, so two different
-  // metrics of exactly equal det (diag(a, b) and diag(b, a)) are still taken in the numbering's
-  // order: a turned frame built of such cells can grade otherwise (PHiLiP's frames have no such
-  // ties, 4 of 34 study-loop frames sampled have 1-4, all at step 0; identical cells do not matter).
+  // frame, whose canonical order differs. Equal det: cells of one metric go one by one, lower
+  // index first (the order changes only the rounding: η𝓜 ∩ 𝓜 = 𝓜 between them, and their bounds
+  // on a neighbour are multiples of one 𝓜). Where *different* metrics share a det (diag(a, b)
+  // beside diag(b, a)) the numbering would decide again, so that group goes at once: each member
+  // imposes its bound from its metric before the group (a snapshot), and each neighbour takes the
+  // bounds it receives in their own order, by the generalized eigenvalues of (bound, 𝓜_j), largest
+  // first — all of it turning with the frame.
   using Key = std::pair<double, int>;
   auto later = [](const Key& a, const Key& b) { return a.first < b.first || (a.first == b.first && a.second > b.second); };
   std::priority_queue<Key, std::vector<Key>, decltype(later)> work(later);
   std::vector<char> changed(n, 0);
   std::vector<double> key(n);
-  for (int c = 0; c < n; ++c) work.push({key[c] = A[c].determinant(), c});
+  std::unordered_map<double, bool> mixed;  // per det value met at the top: different metrics tie
   long updates = 0;
   const long max_updates = 200L * n + 1000;
+  auto push = [&](int c) {
+    work.push({key[c] = A[c].determinant(), c});
+    mixed.erase(key[c]);  // a newcomer to a tie: look at the tie again
+  };
+  for (int c = 0; c < n; ++c) push(c);
+  auto bound = [&](const Sym& Ac, int c, int j) -> Sym {  // eta(l) 𝓜_c, l = |M_c (g_j - g_c)|
+    const Vec2 d = g[j] - g[c];
+    const double l = std::sqrt(d.dot(Ac * d));
+    return (1.0 / ((1 + l * lnb) * (1 + l * lnb))) * Ac;
+  };
+  auto impose = [&](int j, const Sym& B) {
+    const Sym I = intersect(A[j], B);
+    if ((I - A[j]).norm() > 1e-9 * A[j].norm()) {
+      A[j] = I;
+      changed[j] = 1;
+      ++updates;
+      push(j);
+    }
+  };
+  std::vector<Key> tied;
+  std::vector<int> group;
+  struct Bound {
+    int j;
+    double lmax, lmin;  // generalized eigenvalues of (B, 𝓜_j): the order-free sort key
+    Sym B;
+  };
+  std::vector<Bound> bounds;
   while (!work.empty() && updates < max_updates) {
     const auto [k, c] = work.top();
     work.pop();
     if (k != key[c]) continue;  // a stale entry: c changed and was queued again
-    key[c] = -1;                // done until it changes again
-    for (int j : nb[c]) {
-      const Vec2 d = g[j] - g[c];
-      const double l = std::sqrt(d.dot(A[c] * d));
-      const double eta = 1.0 / ((1 + l * lnb) * (1 + l * lnb));
-      const Sym I = intersect(A[j], eta * A[c]);
-      if ((I - A[j]).norm() > 1e-9 * A[j].norm()) {
-        A[j] = I;
-        changed[j] = 1;
-        ++updates;
-        work.push({key[j] = A[j].determinant(), j});
+    auto seen = mixed.find(k);
+    if (seen == mixed.end()) {  // first time at this det: do different metrics share it?
+      bool m = false;
+      tied.clear();
+      while (!work.empty() && work.top().first == k) {
+        tied.push_back(work.top());
+        work.pop();
+        if (key[tied.back().second] == k && A[tied.back().second] != A[c]) m = true;
       }
+      for (const Key& t : tied) work.push(t);
+      seen = mixed.emplace(k, m).first;
     }
+    if (!seen->second) {
+      key[c] = -1;  // done until it changes again
+      for (int j : nb[c]) impose(j, bound(A[c], c, j));
+      continue;
+    }
+    // the whole tie at once, from a snapshot
+    group.assign(1, c);
+    while (!work.empty() && work.top().first == k) {
+      const int t = work.top().second;
+      work.pop();
+      if (key[t] == k && group.back() != t) group.push_back(t);
+    }
+    mixed.erase(k);
+    bounds.clear();
+    for (int m : group) {
+      key[m] = -1;
+      for (int j : nb[m]) bounds.push_back({j, 0, 0, bound(A[m], m, j)});
+    }
+    for (Bound& b : bounds) {
+      Eigen::GeneralizedSelfAdjointEigenSolver<Sym> es(b.B, A[b.j]);
+      b.lmax = es.eigenvalues()[1];
+      b.lmin = es.eigenvalues()[0];
+    }
+    std::sort(bounds.begin(), bounds.end(), [](const Bound& a, const Bound& b) {
+      return a.j != b.j ? a.j < b.j : a.lmax != b.lmax ? a.lmax > b.lmax : a.lmin > b.lmin;
+    });
+    for (const Bound& b : bounds) impose(b.j, b.B);
   }
   r.passes = static_cast<int>(updates);
   for (int c = 0; c < n; ++c) {
