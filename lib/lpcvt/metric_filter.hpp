@@ -25,10 +25,11 @@
 // metric intersection (largest ellipse inside both, by simultaneous reduction). A worklist
 // re-imposes the bounds of every cell that changed on its neighbours until nothing changes by
 // more than 1e-9 (relative; at most 200 updates per cell), taking the finest cell first (largest
-// det 𝓜, ties to the lower index), so the result depends on the metrics, not on the numbering:
-// a turned or mirrored frame grades to the turned or mirrored metrics — unless two different
-// metrics have exactly the same det (diag(a, b) and diag(b, a)), whose order the numbering still
-// decides. Intersection only
+// det 𝓜; cells of equal det and equal metric one by one, lower index first; different metrics of
+// equal det, as diag(a, b) beside diag(b, a), as one group from a snapshot, each neighbour taking
+// their bounds sorted by the generalized eigenvalues), so the result depends on the metrics, not
+// on the numbering: a turned or mirrored frame grades to the turned or mirrored metrics (to
+// rounding). Intersection only
 // refines; the uniform rescale afterwards restores the point count. The frame is rebuilt from
 // 𝓜 as for the smoothing.
 #include <optional>
