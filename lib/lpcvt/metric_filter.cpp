@@ -249,7 +249,7 @@ FilterReport grade_metric(Background& bg, double beta) {
       b.lmax = es.eigenvalues()[1];
       b.lmin = es.eigenvalues()[0];
     }
-    std::sort(bounds.begin(), bounds.end(), [](const Bound& a, const Bound& b) {
+    std::stable_sort(bounds.begin(), bounds.end(), [](const Bound& a, const Bound& b) {
       return a.j != b.j ? a.j < b.j : a.lmax != b.lmax ? a.lmax > b.lmax : a.lmin > b.lmin;
     });
     for (const Bound& b : bounds) impose(b.j, b.B);
