@@ -639,17 +639,22 @@ class MshReader {
                 physical_label(it->second.front()) +
                 ": quadapt gives each boundary edge one group; keep one Physical Curve per curve");
     }
-    std::map<std::pair<int, int>, long long> seen;  // sorted end nodes -> group key of the first line
+    // group key of a line: (0, physical tag) or, without one, (1, entity tag) — a pair, not a
+    // signed tag: negating an entity tag overflowed at the most negative value (fuzzer, UBSan)
+    using GroupKey = std::pair<int, long long>;
+    std::map<std::pair<int, int>, GroupKey> seen;  // sorted end nodes -> group key of the first line
     std::vector<RawLine> kept;
     kept.reserve(lines_.size());
     for (const RawLine& l : lines_) {
       const auto key = std::minmax(l.a, l.b);
-      const long long group = l.phys != 0 ? l.phys : -l.entity;
+      const GroupKey group = l.phys != 0 ? GroupKey{0, l.phys} : GroupKey{1, l.entity};
       auto [it, fresh] = seen.emplace(key, group);
       if (fresh) {
         kept.push_back(l);
       } else if (it->second != group) {
-        const auto label = [&](long long g) { return g > 0 ? "physical group " + physical_label(g) : "curve " + std::to_string(-g); };
+        const auto label = [&](const GroupKey& g) {
+          return g.first == 0 ? "physical group " + physical_label(g.second) : "curve " + std::to_string(g.second);
+        };
         std::ostringstream e;
         e.precision(6);
         e << "the boundary edge (" << m_.nodes[l.a].x() << ", " << m_.nodes[l.a].y() << ") - (" << m_.nodes[l.b].x()

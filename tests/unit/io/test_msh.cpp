@@ -505,6 +505,19 @@ $EndElements
   CHECK(error_of(text41).find("curve 5 is in physical groups 2 ('right') and 7 ('outflow')") != std::string::npos);
 }
 
+TEST_CASE("a boundary edge in two groups, one of them at the most negative tag: named right, no overflow") {
+  // the group key was a signed tag (physical tag, or minus the entity tag), negated again for the
+  // message: a physical tag of -2^63 was called a curve and its negation overflowed (the fuzzer,
+  // under UBSan). A negative physical tag is a physical group all the same (refused later as out
+  // of range when it stands alone).
+  const long long most_negative = std::numeric_limits<long long>::min();
+  const std::string e = error_of(square22({{most_negative, 2, 3, 6}, {2, 2, 3, 6}}));
+  CHECK(e.find("bad.msh: the boundary edge (1, 0) - (1, 0.5) is in physical group -9223372036854775808 and in "
+               "physical group 2") != std::string::npos);
+  const std::string c = error_of(square22({{0, most_negative, 3, 6}, {0, 5, 3, 6}}));
+  CHECK(c.find("is in curve -9223372036854775808 and in curve 5") != std::string::npos);
+}
+
 TEST_CASE("unnamed curves on one side of the unit square all take the side's name") {
   // no physical groups: each curve is its own entity; x = 0 is made of two curves (5 and 6)
   Mesh m = from_text(square22({{0, 1, 1, 2}, {0, 1, 2, 3}, {0, 2, 3, 6}, {0, 2, 6, 9}, {0, 3, 9, 8}, {0, 3, 8, 7},
