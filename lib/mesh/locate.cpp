@@ -108,22 +108,25 @@ bool CellLocator::well_inside(int c, const Vec2& x) const {
   return true;
 }
 
-int CellLocator::locate(const Vec2& x) const {
-  if (m_.cells.empty()) return -1;
+const std::vector<int>* CellLocator::candidates_of(const Vec2& x) const {
+  if (m_.cells.empty()) return nullptr;
   const double fx = (x.x() - lo_.x()) / cell_size_.x(), fy = (x.y() - lo_.y()) / cell_size_.y();
-  if (fx < -1e-9 || fy < -1e-9 || fx > nx_ + 1e-9 || fy > ny_ + 1e-9) return -1;
-  for (int c : candidates(static_cast<size_t>(by(x.y())) * nx_ + bx(x.x()), x))
-    if (inside(c, x)) return c;
+  if (fx < -1e-9 || fy < -1e-9 || fx > nx_ + 1e-9 || fy > ny_ + 1e-9) return nullptr;
+  return &candidates(static_cast<size_t>(by(x.y())) * nx_ + bx(x.x()), x);
+}
+
+int CellLocator::locate(const Vec2& x) const {
+  if (const std::vector<int>* cs = candidates_of(x))
+    for (int c : *cs)
+      if (inside(c, x)) return c;
   return -1;
 }
 
 void CellLocator::locate_all(const Vec2& x, std::vector<int>& out) const {
   out.clear();
-  if (m_.cells.empty()) return;
-  const double fx = (x.x() - lo_.x()) / cell_size_.x(), fy = (x.y() - lo_.y()) / cell_size_.y();
-  if (fx < -1e-9 || fy < -1e-9 || fx > nx_ + 1e-9 || fy > ny_ + 1e-9) return;
-  for (int c : candidates(static_cast<size_t>(by(x.y())) * nx_ + bx(x.x()), x))
-    if (inside(c, x)) out.push_back(c);
+  if (const std::vector<int>* cs = candidates_of(x))
+    for (int c : *cs)
+      if (inside(c, x)) out.push_back(c);
 }
 
 int CellLocator::locate_or_nearest(const Vec2& x) const {

@@ -45,6 +45,8 @@ class CellLocator {
   std::vector<std::vector<int>> sub_;
   /// The cells to test for x in bucket b (its sub-bucket's when it has a sub-grid).
   const std::vector<int>& candidates(size_t b, const Vec2& x) const;
+  /// The cells to test for x (its bucket's, as above), or null when x lies outside the grid.
+  const std::vector<int>* candidates_of(const Vec2& x) const;
   bool inside(int c, const Vec2& x) const;
   double distance(int c, const Vec2& x) const;
   int bx(double x) const;
