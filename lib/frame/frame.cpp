@@ -204,11 +204,11 @@ int FrameSampler::cell(const Vec2& x, bool* inside) const {
   // mirrored frame does not share: quadsmooth's wall nodes on a background vertex took another
   // cell's metric in the turned problem (docs/quad-quality.md, "Turned and mirrored graded frames").
   std::vector<int> all;
-  locator_.locate_all(x, all);
-  double best = std::abs(oriented_[c].determinant());
+  locator_.locate_all(x, all);  // ascending, so the first of equally fine cells stays
+  double best = 0;
   for (int d : all) {
     const double det = std::abs(oriented_[d].determinant());
-    if (det > best || (det == best && d < c)) {
+    if (det > best) {
       best = det;
       c = d;
     }
