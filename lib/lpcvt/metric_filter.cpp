@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <queue>
-#include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include "core/error.hpp"
@@ -180,12 +180,12 @@ FilterReport grade_metric(Background& bg, double beta) {
   std::priority_queue<Key, std::vector<Key>, decltype(later)> work(later);
   std::vector<char> changed(n, 0);
   std::vector<double> key(n);
-  std::unordered_map<double, bool> mixed;  // per det value met at the top: different metrics tie
+  std::unordered_set<double> plain;  // det values seen at the top whose tie holds one metric only
   long updates = 0;
   const long max_updates = 200L * n + 1000;
   auto push = [&](int c) {
     work.push({key[c] = A[c].determinant(), c});
-    mixed.erase(key[c]);  // a newcomer to a tie: look at the tie again
+    plain.erase(key[c]);  // a newcomer to a tie: look at the tie again
   };
   for (int c = 0; c < n; ++c) push(c);
   auto bound = [&](const Sym& Ac, int c, int j) -> Sym {  // eta(l) 𝓜_c, l = |M_c (g_j - g_c)|
@@ -210,35 +210,11 @@ FilterReport grade_metric(Background& bg, double beta) {
     Sym B;
   };
   std::vector<Bound> bounds;
-  while (!work.empty() && updates < max_updates) {
-    const auto [k, c] = work.top();
-    work.pop();
-    if (k != key[c]) continue;  // a stale entry: c changed and was queued again
-    auto seen = mixed.find(k);
-    if (seen == mixed.end()) {  // first time at this det: do different metrics share it?
-      bool m = false;
-      tied.clear();
-      while (!work.empty() && work.top().first == k) {
-        tied.push_back(work.top());
-        work.pop();
-        if (key[tied.back().second] == k && A[tied.back().second] != A[c]) m = true;
-      }
-      for (const Key& t : tied) work.push(t);
-      seen = mixed.emplace(k, m).first;
-    }
-    if (!seen->second) {
-      key[c] = -1;  // done until it changes again
-      for (int j : nb[c]) impose(j, bound(A[c], c, j));
-      continue;
-    }
-    // the whole tie at once, from a snapshot
+  // The whole tie at once, from a snapshot: c and the valid entries of `tied` (det k).
+  auto process_group = [&](double k, int c) {
     group.assign(1, c);
-    while (!work.empty() && work.top().first == k) {
-      const int t = work.top().second;
-      work.pop();
-      if (key[t] == k && group.back() != t) group.push_back(t);
-    }
-    mixed.erase(k);
+    for (const Key& t : tied)
+      if (key[t.second] == k && group.back() != t.second) group.push_back(t.second);
     bounds.clear();
     for (int m : group) {
       key[m] = -1;
@@ -253,6 +229,28 @@ FilterReport grade_metric(Background& bg, double beta) {
       return a.j != b.j ? a.j < b.j : a.lmax != b.lmax ? a.lmax > b.lmax : a.lmin > b.lmin;
     });
     for (const Bound& b : bounds) impose(b.j, b.B);
+  };
+  while (!work.empty() && updates < max_updates) {
+    const auto [k, c] = work.top();
+    work.pop();
+    if (k != key[c]) continue;  // a stale entry: c changed and was queued again
+    if (!plain.count(k)) {  // do different metrics share this det? the tie's entries, in order
+      bool mixed = false;
+      tied.clear();
+      while (!work.empty() && work.top().first == k) {
+        tied.push_back(work.top());
+        work.pop();
+        if (key[tied.back().second] == k && A[tied.back().second] != A[c]) mixed = true;
+      }
+      if (mixed) {
+        process_group(k, c);
+        continue;
+      }
+      for (const Key& t : tied) work.push(t);
+      plain.insert(k);
+    }
+    key[c] = -1;  // done until it changes again
+    for (int j : nb[c]) impose(j, bound(A[c], c, j));
   }
   r.passes = static_cast<int>(updates);
   for (int c = 0; c < n; ++c) {
