@@ -57,7 +57,7 @@ def main():
         for spec in a.frames:
             name, path = spec.split("=", 1)
             philip = path.endswith(":philip")
-            frames.append((name, path[:-7] if philip else path, philip))
+            frames.append((name, path[: -len(":philip")] if philip else path, philip))
     else:
         fix = os.path.join(SRC, "tests", "fixtures", "philip")
         frames = [(c, os.path.join(fix, f"input_{c}_3.msh"), True) for c in PHILIP]
