@@ -5,7 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
+#include <queue>
 #include <limits>
 #include <tuple>
 
@@ -84,12 +84,36 @@ std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& 
     }
     return false;
   };
+  // Proposals wait in a priority queue: ring (lattice steps from the seed) first, then the
+  // Euclidean distance from the seed, then the order they were made in. Both keys turn and
+  // mirror with the problem, so a conflict between two proposals (where the frame grades, two
+  // parents propose nearly the same point) is decided the same way in a turned or mirrored
+  // frame; the order the four neighbours are proposed in (+a, +b, -a, -b, V's columns, whose
+  // signs a mirror's canonical frame flips) decides only exact ties.
   struct Item {
+    int ring;
+    double dist2;
+    long order;
     Vec2 p;
     int cell;
-    VH vh;
+    VH parent;
   };
-  std::deque<Item> queue;
+  auto later = [](const Item& x, const Item& y) {
+    return std::tie(x.ring, x.dist2, x.order) > std::tie(y.ring, y.dist2, y.order);
+  };
+  std::priority_queue<Item, std::vector<Item>, decltype(later)> queue(later);
+  long made = 0;
+  Vec2 seed = Vec2::Zero();
+  // the four lattice neighbours of an accepted point p (V at p) that lie in the domain
+  auto propose = [&](const Vec2& p, int cell, VH vh, int ring) {
+    const Mat2 V = bg.metric(cell, p).inverse();
+    const Vec2 a = V.col(0), b = V.col(1);
+    for (const Vec2& y : {Vec2(p + a), Vec2(p + b), Vec2(p - a), Vec2(p - b)}) {
+      const int c = bg.locate(y, cell);
+      if (c < 0) continue;
+      queue.push({ring, (y - seed).squaredNorm(), made++, y, c, vh});
+    }
+  };
   // Seeds: integration cells' centroids, finest metric first. Ties (a constant frame: every
   // cell) go to the smallest coordinates along the cell's own frame axes (v, then w), so a
   // rotated or mirrored problem picks the mapped seed — not the first cell in the background's
@@ -142,30 +166,24 @@ std::vector<Vec2> lattice_points(const Background& bg, const std::vector<Vec2>& 
         if (crowded(y, M, R, hint, ds)) continue;
         hint = dt.insert(Point(y.x(), y.y()), hint != VH() ? hint->face() : DT::Face_handle());
         out.push_back(y);
-        queue.push_back({y, q, hint});
+        seed = y;
+        propose(y, q, hint, 1);
         found = true;
       }
       if (!found) break;
       continue;
     }
-    const Item it = queue.front();
-    queue.pop_front();
-    const Mat2 V = bg.metric(it.cell, it.p).inverse();
-    const Vec2 a = V.col(0), b = V.col(1);
-    for (const Vec2& y : {Vec2(it.p + a), Vec2(it.p + b), Vec2(it.p - a), Vec2(it.p - b)}) {
-      const int c = bg.locate(y, it.cell);
-      if (c < 0) continue;
-      const Mat2 M = bg.metric(c, y);
-      // Euclidean radius of the metric ball of radius delta: delta * |M^-1| (Frobenius, >= the
-      // largest singular value)
-      const double R = delta * M.inverse().norm();
-      if (crowded(y, M, R, it.vh, delta)) continue;
-      VH vh = dt.insert(Point(y.x(), y.y()), it.vh->face());
-      hint = vh;
-      out.push_back(y);
-      queue.push_back({y, c, vh});
-      if (static_cast<int>(out.size()) >= max_points) break;
-    }
+    const Item it = queue.top();
+    queue.pop();
+    const Mat2 M = bg.metric(it.cell, it.p);
+    // Euclidean radius of the metric ball of radius delta: delta * |M^-1| (Frobenius, >= the
+    // largest singular value)
+    const double R = delta * M.inverse().norm();
+    if (crowded(it.p, M, R, it.parent, delta)) continue;
+    VH vh = dt.insert(Point(it.p.x(), it.p.y()), it.parent->face());
+    hint = vh;
+    out.push_back(it.p);
+    propose(it.p, it.cell, vh, it.ring + 1);
   }
   return out;
 }

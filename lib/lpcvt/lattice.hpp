@@ -10,8 +10,14 @@
 // domain and no point (the fixed boundary points included) is within metric distance `delta` of
 // it, |M_eff(y) (q - y)|_2 < delta (found by a range search on an incremental Delaunay
 // triangulation of the accepted points: a breadth-first walk from the nearest point over the
-// points within the Euclidean radius delta * |V(y)|_2). Proposals are processed first in, first
-// out, so the lattice is grown ring by ring from the seed; it is deterministic. Seeds: the
+// points within the Euclidean radius delta * |V(y)|_2). Proposals are processed ring by ring
+// from the seed (ring = lattice steps from it), within a ring nearest the seed first (Euclidean
+// distance), then in the order they were made: where the frame grades, two parents propose
+// nearly the same point and the first taken wins, and ring and distance turn and mirror with
+// the problem, where the order of the four proposals (+a, +b, -a, -b along V's columns, whose
+// signs a mirrored frame's canonical V flips) does not — the first-in, first-out queue this
+// replaces grew a mirrored PHiLiP frame's lattice otherwise (55-264 start points differed;
+// tests/cli/graded_equivariance.sh). Deterministic. Seeds: the
 // centroids of the background cells, finest metric (largest |det M|) first; a seed is used when
 // no point is within one metric unit of it once the growth from the previous seeds has stopped,
 // so the finest region sets the lattice and every region the growth cannot reach gets its own.

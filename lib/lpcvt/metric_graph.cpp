@@ -31,22 +31,42 @@ double metric_incircle(const Eigen::Matrix2d& M, const Vec2& a, const Vec2& b, c
 
 namespace {
 
+/// The in-circle test of the quadrilateral c p d q (triangle c p q CCW, d across p q) in the
+/// metric M, > 0 when d is inside the circle through c, p, q: the in-circle determinant divided by
+/// the product of the two diagonals' squared mapped lengths, |M(d - c)|^2 |M(q - p)|^2. The
+/// determinant is the same from either side of the edge (c p q against d, or d q p against c: an
+/// even permutation) and so is this scale, so the value belongs to the quadrilateral, not to the
+/// triangle it is tested from, which follows the numbering (metric_incircle's scale, the test
+/// point's distances, does not). Dimensionless; a reflection (det M < 0) gives the same answer.
+double quad_incircle(const Eigen::Matrix2d& M, const Vec2& c, const Vec2& p, const Vec2& q, const Vec2& d) {
+  const Vec2 md = M * d;
+  const Vec2 pa = M * c - md, pb = M * p - md, pc = M * q - md;
+  const double det = pa.squaredNorm() * cross2(pb, pc) - pb.squaredNorm() * cross2(pa, pc) +
+                     pc.squaredNorm() * cross2(pa, pb);
+  const double scale = pa.squaredNorm() * (pc - pb).squaredNorm();
+  if (!(scale > 0)) return 0;
+  return (M(0, 0) * M(1, 1) - M(0, 1) * M(1, 0) < 0 ? -det : det) / scale;
+}
+
 /// The flip rule's test of edge k of triangle t (vertices V[t], neighbours N[t]: N[t][k] across
-/// the edge opposite V[t][k]) against its neighbour u = N[t][k]: flip? (Without the "never
+/// the edge opposite V[t][k]) against its neighbour u = N[t][k]: the in-circle value when the
+/// edge wants a flip (> 1e-9, the quadrilateral strictly convex), else -1. (Without the "never
 /// re-made" rule and the cap, which the Lawson loop applies.)
-bool wants_flip(const std::vector<Vec2>& x, const Tris& V, const Tris& N, int t, int k, const EdgeMetric& metric) {
+double flip_value(const std::vector<Vec2>& x, const Tris& V, const Tris& N, int t, int k, const EdgeMetric& metric) {
   const int u = N[t][k];
-  if (u < 0) return false;
+  if (u < 0) return -1;
   const int c = V[t][k], p = V[t][(k + 1) % 3], q = V[t][(k + 2) % 3];
   const int l = index_of(N[u], t);
-  if (N[u][l] != t) return false;
+  if (N[u][l] != t) return -1;
   const int d = V[u][l];
-  if (V[u][(l + 1) % 3] != q || V[u][(l + 2) % 3] != p) return false;
+  if (V[u][(l + 1) % 3] != q || V[u][(l + 2) % 3] != p) return -1;
   const Eigen::Matrix2d M = metric({x[c], x[p], x[d], x[q]});
-  if (!(metric_incircle(M, x[c], x[p], x[q], x[d]) > 1e-9)) return false;
+  const double v = quad_incircle(M, x[c], x[p], x[q], x[d]);
+  if (!(v > 1e-9)) return -1;
   // strictly convex quadrilateral c p d q: both new triangles positive (relative to size)
   const double s = (x[d] - x[c]).squaredNorm();
-  return cross2(x[p] - x[c], x[d] - x[c]) > 1e-12 * s && cross2(x[d] - x[c], x[q] - x[c]) > 1e-12 * s;
+  if (!(cross2(x[p] - x[c], x[d] - x[c]) > 1e-12 * s && cross2(x[d] - x[c], x[q] - x[c]) > 1e-12 * s)) return -1;
+  return v;
 }
 
 /// Lawson flips of g's triangles (g.tris, with their adjacency g.tnb) in place by the flip rule
@@ -61,57 +81,63 @@ void flip_and_list(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric&
   g.flips = 0;
   g.capped = false;
   MetricGraph::Scratch& w = g.scratch;
-  // Edge stack, seeded with every interior edge once (t < neighbour), in triangle order
-  // (deterministic: popped from triangle 0 up).
-  std::vector<std::pair<int, int>>& stack = w.stack;
-  stack.clear();
-  // With a metric factory the first test of every edge is made in parallel (fixed blocks of
-  // triangles, one fresh metric per block: the same answers for any thread count) and only the
-  // edges that want a flip are stacked, in the serial seed's order. An edge that passed may be
-  // asked again after a flip nearby: the four outer edges of every flipped quadrilateral are
-  // stacked anyway, and no other edge's test can change. The serial loop then pops only the
-  // flips and their consequences instead of every edge (1.1e6 points: 3.3 million edges an
-  // evaluation, a few thousand flips).
-  size_t ninit = 0;
+  using Want = MetricGraph::Scratch::Want;
+  std::vector<int>& version = w.version;
+  version.assign(nt, 0);
+  // The edges that want a flip, most violated first (header, "Flip order"): a binary heap on
+  // (value, t, k). With a metric factory the first test of every edge (t < its neighbour) is
+  // made in parallel (fixed blocks of triangles, one fresh metric per block: the same answers for
+  // any thread count); the serial loop then pops only the flips and their consequences instead
+  // of every edge (1.1e6 points: 3.3 million edges an evaluation, a few thousand flips).
+  auto before = [](const Want& a, const Want& b) {  // heap order: b pops first
+    return a.value != b.value ? a.value < b.value : a.t != b.t ? a.t > b.t : a.k > b.k;
+  };
+  std::vector<Want>& heap = w.heap;
+  heap.clear();
+  auto test = [&](int t, int k, const EdgeMetric& m, std::vector<Want>& out) {
+    const double v = flip_value(x, V, N, t, k, m);
+    if (v >= 0) out.push_back({v, t, k, N[t][k], version[t], version[N[t][k]]});
+  };
   if (parallel_metric) {
     constexpr int kBlock = 4096;
     const int nblocks = (nt + kBlock - 1) / kBlock;
-    std::vector<std::vector<std::pair<int, int>>>& part = w.part;
+    std::vector<std::vector<Want>>& part = w.part;
     if (static_cast<int>(part.size()) < nblocks) part.resize(nblocks);
 #pragma omp parallel for schedule(dynamic, 1) if (nblocks > 4)
     for (int b = 0; b < nblocks; ++b) {
       const EdgeMetric m = parallel_metric();
-      std::vector<std::pair<int, int>>& out = part[b];
+      std::vector<Want>& out = part[b];
       out.clear();
-      for (int t = std::min(nt, (b + 1) * kBlock) - 1; t >= b * kBlock; --t)
-        for (int k = 2; k >= 0; --k)
-          if (N[t][k] > t && wants_flip(x, V, N, t, k, m)) out.emplace_back(t, k);
+      for (int t = b * kBlock; t < std::min(nt, (b + 1) * kBlock); ++t)
+        for (int k = 0; k < 3; ++k)
+          if (N[t][k] > t) test(t, k, m, out);
     }
-    for (int b = nblocks - 1; b >= 0; --b) stack.insert(stack.end(), part[b].begin(), part[b].end());
-    ninit = stack.size();
+    for (int b = 0; b < nblocks; ++b) heap.insert(heap.end(), part[b].begin(), part[b].end());
   } else {
-    for (int t = nt - 1; t >= 0; --t)
-      for (int k = 2; k >= 0; --k)
-        if (N[t][k] > t) stack.emplace_back(t, k);
+    for (int t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k)
+        if (N[t][k] > t) test(t, k, metric, heap);
   }
-  std::vector<char>& flipped = w.flipped;
-  flipped.assign(parallel_metric ? nt : 0, 0);
+  std::make_heap(heap.begin(), heap.end(), before);
+  auto push = [&](int t, int k) {
+    const size_t n0 = heap.size();
+    test(t, k, metric, heap);
+    if (heap.size() > n0) std::push_heap(heap.begin(), heap.end(), before);
+  };
   const long cap = kMaxFlipsPerSite * std::max(n, 1);
   auto edge_key = [n](int a, int b) { return static_cast<long long>(std::min(a, b)) * n + std::max(a, b); };
   std::unordered_set<long long>& removed = w.removed;
   removed.clear();
-  while (!stack.empty()) {
-    const size_t entry = stack.size() - 1;
-    auto [t, k] = stack.back();
-    stack.pop_back();
-    const int u = N[t][k];
-    if (u < 0) continue;
-    // `entry` is a stack position: one below ninit is a seed that wanted a flip, unless it has
-    // been reused by an entry pushed after a flip — but those are edges of the flipped triangles
-    // t, u only, so `flipped` rejects them (pushing an edge of an unflipped neighbour would need
-    // its own mark)
-    const bool known = entry < ninit && !flipped[t] && !flipped[u];
-    if (!known && !wants_flip(x, V, N, t, k, metric)) continue;
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), before);
+    const Want e = heap.back();
+    heap.pop_back();
+    const int t = e.t, k = e.k, u = N[t][k];
+    // an entry made before t, its neighbour or theirs changed: tested again, queued anew
+    if (u != e.u || version[t] != e.vt || version[u] != e.vu) {
+      push(t, k);
+      continue;
+    }
     const int c = V[t][k], p = V[t][(k + 1) % 3], q = V[t][(k + 2) % 3];
     const int l = index_of(N[u], t);
     const int d = V[u][l];
@@ -132,13 +158,15 @@ void flip_and_list(const std::vector<Vec2>& x, MetricGraph& g, const EdgeMetric&
     if (C >= 0) N[C][index_of(N[C], u)] = t;
     if (A >= 0) N[A][index_of(N[A], t)] = u;
     removed.insert(edge_key(p, q));
-    if (!flipped.empty()) flipped[t] = flipped[u] = 1;
+    // every entry of these six triangles' edges is stale now
+    for (int s : {t, u, A, B, C, D})
+      if (s >= 0) ++version[s];
     ++g.flips;
     // the four outer edges may now fail the test
-    stack.emplace_back(t, 0);
-    stack.emplace_back(t, 2);
-    stack.emplace_back(u, 0);
-    stack.emplace_back(u, 1);
+    push(t, 0);
+    push(t, 2);
+    push(u, 0);
+    push(u, 1);
   }
   // neighbour lists (CSR, sorted): every edge once, from the triangle with the smaller index (or
   // its only one on the hull)

@@ -18,6 +18,14 @@
 // triangulation of the mapped sites (Lawson's flip algorithm in the mapped plane; convexity of
 // the flip quadrilateral is affine-invariant); for a graded metric, the local one.
 //
+// Flip order: the most violated edge first (the largest in-circle value; a priority queue, ties
+// by triangle and edge index). Where the metric varies, Lawson's flips are not confluent: the
+// triangulation they end in depends on the order, and an order that follows the triangles'
+// numbering (a stack seeded from triangle 0) does not turn with the problem — on PHiLiP's frames
+// turned by 90 degrees or mirrored, split/merge and the exact count then saw other edges and
+// lpcvt's points moved by up to 0.04 of the domain. The in-circle values turn with the problem
+// (docs/quad-quality.md, "Turned and mirrored graded frames"; tests/cli/graded_equivariance.sh).
+//
 // Flip rule: edge (a, b) with opposite vertices c (triangle a b c, CCW) and d is flipped when d is
 // strictly inside the circle through M a, M b, M c (relative tolerance 1e-10 on the in-circle
 // determinant, so that co-circular squares of a metric lattice stay as they are) and the
@@ -64,9 +72,15 @@ struct MetricGraph {
   /// Buffers of the flips, kept between updates (an evaluation of the energy carries the graph
   /// and updates it every time: no allocation once they are large enough). Not part of the graph.
   struct Scratch {
-    std::vector<std::pair<int, int>> stack;
-    std::vector<std::vector<std::pair<int, int>>> part;  ///< per block: its edges that want a flip
-    std::vector<char> flipped;
+    /// An edge that wants a flip: in-circle value, triangle t and edge k (opposite tris[t][k]),
+    /// the neighbour u across it and the versions of t and u when the value was computed.
+    struct Want {
+      double value;
+      int t, k, u, vt, vu;
+    };
+    std::vector<Want> heap;
+    std::vector<std::vector<Want>> part;  ///< per block: its edges that want a flip
+    std::vector<int> version;             ///< per triangle: bumped when it or a neighbour changes
     std::vector<int> fill;
     std::unordered_set<long long> removed;
   } scratch;
@@ -82,8 +96,8 @@ using EdgeMetric = std::function<Eigen::Matrix2d(const std::array<Vec2, 4>& corn
 
 /// Makes independent EdgeMetric objects (each may keep state, e.g. a point-location hint): with
 /// it, the first in-circle test of every edge is made in parallel (OpenMP, fixed blocks of 4,096
-/// triangles, one fresh metric per block) and only the edges that want a flip are stacked for the
-/// serial Lawson loop (whose flips stack the four outer edges of each flipped quadrilateral as
+/// triangles, one fresh metric per block) and only the edges that want a flip are queued for the
+/// serial Lawson loop (whose flips queue the four outer edges of each flipped quadrilateral as
 /// always). The result does not depend on the thread count. It is
 /// the graph of the call without a factory when the metric's answer does not depend on its state;
 /// a stateful metric may differ there (the background's point location puts a point within its

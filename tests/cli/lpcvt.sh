@@ -122,7 +122,9 @@ set -e
 #    at 30 degrees, h1 = 0.2, 500:1; docs/lpcvt.md "A frame that spans the domain"): a warning
 #    before the minimisation naming the frame and the figure, and the report's frame_span; the
 #    points all lie on the walls, and the output is still Delaunay in the metric (its flips used
-#    to stop at a cap of 20 per site: median largest metric angle ~180 degrees, 10x the time)
+#    to stop at a cap of 20 per site: median largest metric angle ~180 degrees, 10x the time; the
+#    flips in the triangles' order needed more than 20 per site here, the most violated first
+#    about 17: metric_graph.hpp "Flip order")
 $FRAME "$T/span.msh" --n 2 --h1 0.2 --h2 0.0004 --theta 0.5236
 lpcvt "$T/span.msh" -o "$T/span-tri.msh" --phases 1 2> "$T/span.err"
 grep -q "warning: $T/span.msh: the frame asks for only 3.415e+00 cells across the domain along its long axis (stretch 5.000e+02)" "$T/span.err" ||
@@ -134,7 +136,7 @@ r = json.load(open(sys.argv[1]))
 s = r["frame_span"]
 assert abs(s["cells_across_long_axis"] - 3.415) < 1e-3 and abs(s["stretch"] - 500) < 1e-6, s
 assert "cells across the domain" in s["warning"], s
-assert r["metric_flips_capped"] is False and r["metric_flips"] > 20 * r["points"], (r["metric_flips"], r["points"])
+assert r["metric_flips_capped"] is False and r["metric_flips"] > 10 * r["points"], (r["metric_flips"], r["points"])
 assert r["largest_angle_metric_median"] < 100, r["largest_angle_metric_median"]
 PY
 # ... and none on the frames above, which ask for 20 (iso) and 23 (L-shape at 30 degrees) cells across

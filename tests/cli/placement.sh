@@ -40,8 +40,11 @@ for name in ("mq", "bq"):
     for key in ("cells", "nodes", "irregular_interior_vertices"):
         if a[key] != b[key]:
             fail(f"{name}: {key} {a[key]} at the origin, {b[key]} at 1e7")
-    # coordinates at 1e7 are rounded to 1e-9, 2e-7 of the short edge 0.005: the angles to ~1e-5 deg
-    for key, tol in (("scaled_jacobian_min", 1e-5), ("quad_angle_deviation_mean_deg", 1e-4)):
+    # coordinates at 1e7 are rounded to 1e-9, 2e-7 of the short edge 0.005; lpcvt's minimisation
+    # carries that to ~1e-6 (3.5e-7 before its metric flips went most violated first, 9.9e-7
+    # since), and recombine and quadsmooth to ~2e-4 deg in the mean angle deviation (measured
+    # 1.7e-4; 1e-5 before)
+    for key, tol in (("scaled_jacobian_min", 1e-5), ("quad_angle_deviation_mean_deg", 1e-3)):
         x, y = a["metric"][key], b["metric"][key]
         if abs(x - y) > tol:
             fail(f"{name}: metric {key} {x} at the origin, {y} at 1e7")

@@ -215,3 +215,63 @@ TEST_CASE("metric graph: the parallel first tests give the serial loop's graph, 
     CHECK(mb.calls < ma.calls / 4);  // few flips after a small move: the serial loop tests little
   }
 }
+
+namespace {
+
+/// The graph's edges as pairs of original site numbers (perm[k]: the original number of site k).
+std::vector<std::pair<int, int>> edges_of(const MetricGraph& g, const std::vector<int>& perm) {
+  std::vector<std::pair<int, int>> e;
+  for (int i = 0; i < g.num_sites(); ++i)
+    for (const int* j = g.nbr_begin(i); j != g.nbr_end(i); ++j)
+      if (i < *j) e.emplace_back(std::min(perm[i], perm[*j]), std::max(perm[i], perm[*j]));
+  std::sort(e.begin(), e.end());
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("metric graph: the same graph whatever the sites' numbering, and mirrored with the problem") {
+  // Where the metric varies, Lawson's flips are not confluent: the graph depends on the order of
+  // the flips. Flipping the most violated edge first (metric_graph.hpp, "Flip order") makes it
+  // depend on the geometry only. Before, the flips went in the triangles' order (a stack seeded
+  // from triangle 0), and renumbering the sites — or mirroring the problem, which renumbers the
+  // canonical frame's cells and lpcvt's sites — gave another graph here: 2,000 random sites, the
+  // turning metric, which flips about a third of the Euclidean edges.
+  const std::vector<Vec2> x0 = many_points(2000, 5);
+  const int n = static_cast<int>(x0.size());
+  TurningMetric m;
+  auto build = [&](const std::vector<Vec2>& x) {
+    const DelaunayGraph dt(x, true, false);
+    return metric_delaunay(x, dt.triangles(), [&](const std::array<Vec2, 4>& q) { return m(q); });
+  };
+  std::vector<int> id(n);
+  for (int i = 0; i < n; ++i) id[i] = i;
+  const MetricGraph ref = build(x0);
+  REQUIRE(ref.flips > 300);
+  const auto ref_edges = edges_of(ref, id);
+  // renumbered: the sites in a random order (the Euclidean triangulation is unique: random points)
+  std::vector<int> perm = id;
+  std::shuffle(perm.begin(), perm.end(), std::mt19937(3));
+  std::vector<Vec2> xp(n);
+  for (int k = 0; k < n; ++k) xp[k] = x0[perm[k]];
+  const MetricGraph gp = build(xp);
+  CHECK(gp.flips == ref.flips);
+  CHECK(edges_of(gp, perm) == ref_edges);
+  // mirrored: x -> -x (exact; 1 - x would round), the metric mirrored with it (M' = M Q^T,
+  // Q = diag(-1, 1)), the sites in reversed order
+  std::vector<Vec2> xm(n);
+  std::vector<int> rev(n);
+  for (int k = 0; k < n; ++k) {
+    rev[k] = n - 1 - k;
+    xm[k] = Vec2(-x0[rev[k]].x(), x0[rev[k]].y());
+  }
+  const Mat2 Q = (Mat2() << -1, 0, 0, 1).finished();
+  const DelaunayGraph dtm(xm, true, false);
+  const MetricGraph gm = metric_delaunay(xm, dtm.triangles(), [&](const std::array<Vec2, 4>& q) {
+    std::array<Vec2, 4> back;
+    for (int k = 0; k < 4; ++k) back[k] = Q * q[k];
+    return Mat2(m(back) * Q.transpose());
+  });
+  CHECK(gm.flips == ref.flips);
+  CHECK(edges_of(gm, rev) == ref_edges);
+}
