@@ -27,8 +27,9 @@
 // (docs/quad-quality.md, "Turned and mirrored graded frames"; tests/cli/graded_equivariance.sh).
 //
 // Flip rule: edge (a, b) with opposite vertices c (triangle a b c, CCW) and d is flipped when d is
-// strictly inside the circle through M a, M b, M c (relative tolerance 1e-10 on the in-circle
-// determinant, so that co-circular squares of a metric lattice stay as they are) and the
+// strictly inside the circle through M a, M b, M c (the in-circle determinant over the product
+// of the two diagonals' squared mapped lengths above 1e-9, so that co-circular squares of a
+// metric lattice stay as they are) and the
 // quadrilateral a d b c is strictly convex. The metric belongs to the quadrilateral, not to the
 // edge: the test of the flipped diagonal (c, d) in the same quadrilateral uses the same metric and
 // so never asks to flip back. With the metric at the edge's midpoint instead, the two diagonals
