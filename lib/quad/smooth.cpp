@@ -1,6 +1,7 @@
 #include "quad/smooth.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -331,12 +332,35 @@ SmoothStats shape_smooth(Mesh& m, const ShapeSmoothOptions& opt, const HintedNod
   st.min_angle_before = quality_summary(m).min_angle_deg;
   // Colours: nodes of one colour share no cell, so within a colour every node's fit and guard
   // read only positions that no other node of that colour writes — the colour's nodes move in
-  // parallel and the result does not depend on the thread count (greedy colouring in index
-  // order; colour by colour, Gauss-Seidel across colours).
+  // parallel and the result does not depend on the thread count (colour by colour, Gauss-Seidel
+  // across colours). The colouring is greedy in the order of the nodes' distance from the nodes'
+  // centroid c, measured in each node's metric, |T_i (x_i - c)| (then x, then y, then the index):
+  // the colours decide the Gauss-Seidel order, and with the greedy colouring in index order they
+  // followed the file's node numbering — renumbering the nodes, or turning or mirroring the
+  // problem (whose chain numbers the nodes otherwise), moved the fitted nodes by up to 0.036 of
+  // the domain after the 30 sweeps (PHiLiP's ss15_adj_p2). The distance turns and mirrors with
+  // the problem and, in a constant metric, maps with it (the fit of m in T is the fit of T m);
+  // nodes exactly as far as another one (a mesh symmetric about c) go by x, then y, which a
+  // renumbering leaves alone but a turn does not.
   std::vector<std::vector<int>> colours;
   {
-    std::vector<int> colour(nn, -1), seen(nn, -1);
+    Vec2 centre = Vec2::Zero();
+    for (const Vec2& x : m.nodes) centre += x;
+    centre /= std::max(nn, 1);
+    std::vector<double> dist2(nn);
+    std::vector<int> order(nn);
+    int hint = -1;
     for (int i = 0; i < nn; ++i) {
+      const Vec2 d = m.nodes[i] - centre;
+      dist2[i] = metric ? (metric(m.nodes[i], hint) * d).squaredNorm() : d.squaredNorm();
+      order[i] = i;
+    }
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      const Vec2 &p = m.nodes[a], &q = m.nodes[b];
+      return dist2[a] != dist2[b] ? dist2[a] < dist2[b] : p.x() != q.x() ? p.x() < q.x() : p.y() != q.y() ? p.y() < q.y() : a < b;
+    });
+    std::vector<int> colour(nn, -1), seen(nn, -1);
+    for (const int i : order) {
       if (!movable(i)) continue;
       for (int c : topo.node_cells[i])
         for (int k = 0; k < m.cells[c].nv; ++k)

@@ -557,3 +557,65 @@ TEST_CASE("shape_smooth: options outside their documented ranges are an InputErr
   CHECK_THROWS_AS(shape_smooth(m, o), InputError);
   CHECK(m.nodes == make_perturbed_quads(3, 3, 0.2, 1).nodes);  // nothing moved
 }
+
+TEST_CASE("shape_smooth: the same mesh whatever the nodes' numbering, and turned with the problem") {
+  // The fit is Gauss-Seidel across colours, so the colouring decides the result of a fit that has
+  // not converged; greedy in index order it followed the file's numbering (here: the renumbered
+  // and the turned copies 0.043 apart from the original after 8 sweeps). Greedy in the order of
+  // the nodes' distance from their centroid, in each node's metric, it follows the geometry: a
+  // renumbered copy, and a copy turned by 90 degrees about the origin (x, y) -> (-y, x) with the
+  // metric turned with it, give the same nodes. A split random Delaunay triangulation of the unit
+  // square, a graded, turning metric.
+  Mesh tri = testing::delaunay_unit_square(8, 150, 5);
+  Mesh start = split_to_all_quads(tri);
+  // the wall nodes moved along their walls so that no two are as far from the centroid (the
+  // distance's ties go by x, then y, which a turn does not keep)
+  for (Vec2& x : start.nodes) {
+    const bool vert = x.x() == 0 || x.x() == 1, horiz = x.y() == 0 || x.y() == 1;
+    if (vert && !horiz) x.y() += 0.013 * std::sin(7.9 * x.y() + 2.3 * x.x() + 1.9);
+    if (horiz && !vert) x.x() += 0.01 * std::sin(12.3 * x.x() + 4.1 * x.y() + 0.7);
+  }
+  const NodeMetric metric = [](const Vec2& x) {
+    const double a = 0.5 + 2 * x.x();
+    Mat2 R;
+    R << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+    return Mat2(Eigen::Vector2d(20 * (1 + 2 * x.y()), 8).asDiagonal() * R.transpose());
+  };
+  ShapeSmoothOptions opt;
+  opt.target_edge = std::sqrt(total_area(start) / start.num_cells());
+  opt.slide_walls = true;
+  opt.sweeps = 8;
+  Mesh ref = start;
+  const SmoothStats s0 = shape_smooth(ref, opt, metric);
+  REQUIRE(!s0.converged);  // stopped by the sweeps (as quadsmooth's 30 on PHiLiP's frames): the order matters there
+  // renumbered: node v of the copy is node perm[v] of the start
+  const int nn = start.num_nodes();
+  std::vector<int> perm(nn), where(nn);
+  for (int v = 0; v < nn; ++v) perm[v] = (7919 * v + 13) % nn;  // 7919 prime, no factor of nn
+  {
+    std::vector<int> seen(nn, 0);
+    for (int v : perm) seen[v]++;
+    REQUIRE(std::count(seen.begin(), seen.end(), 1) == nn);
+  }
+  for (int v = 0; v < nn; ++v) where[perm[v]] = v;
+  Mesh renum = start;
+  for (int v = 0; v < nn; ++v) renum.nodes[v] = start.nodes[perm[v]];
+  for (Cell& c : renum.cells)
+    for (int k = 0; k < c.nv; ++k) c.v[k] = where[c.v[k]];
+  for (BoundaryEdge& e : renum.boundary)
+    for (int& v : e.v) v = where[v];
+  Mesh turned = renum;  // before the fit
+  shape_smooth(renum, opt, metric);
+  double d = 0;
+  for (int v = 0; v < nn; ++v) d = std::max(d, (renum.nodes[v] - ref.nodes[perm[v]]).norm());
+  CHECK(d < 1e-12);
+  // turned: x -> Q x, the metric M(Q^T x) Q^T, and the nodes renumbered too
+  Mat2 Q;
+  Q << 0, -1, 1, 0;
+  for (Vec2& x : turned.nodes) x = Q * x;
+  const NodeMetric turned_metric = [&](const Vec2& x) { return Mat2(metric(Q.transpose() * x) * Q.transpose()); };
+  shape_smooth(turned, opt, turned_metric);
+  double dt = 0;
+  for (int v = 0; v < nn; ++v) dt = std::max(dt, (Q.transpose() * turned.nodes[v] - ref.nodes[perm[v]]).norm());
+  CHECK(dt < 1e-12);
+}
