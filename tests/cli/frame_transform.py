@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Exact turns and mirrors of a frame file (the eight symmetries of the square).
 
-    frame_transform.py IN OUT SYMMETRY      SYMMETRY in id r1 r2 r3 m0 m1 m2 m3
+    frame_transform.py IN OUT SYMMETRY [reverse]      SYMMETRY in id r1 r2 r3 m0 m1 m2 m3
 
 rK = a turn by K x 90 degrees about the origin, mK = the mirror x -> -x followed by rK. Each maps
 x -> Q x with Q's entries in {0, 1, -1}, so the coordinates are only swapped and negated: no
@@ -40,7 +40,11 @@ def apply(q, x, y):
     return dot(q[0]), dot(q[1])
 
 
-def transform(path, out, sym):
+def transform(path, out, sym, order="keep"):
+    """order "reverse": the nodes written in reversed order (renumbered: node k of IN is node
+    n - 1 - k of OUT), the same mesh otherwise"""
+    if order not in ("keep", "reverse"):
+        raise ValueError(f"unknown node order {order!r} (keep or reverse)")
     q = matrix(sym)
     m = read_msh(path)
     cells = [(t, c) for t in (2, 3) for c in m["elements"].get(t, [])]
@@ -49,10 +53,12 @@ def transform(path, out, sym):
         raise ValueError(f"{path}: expected one Vinv value per triangle or quad")
     det = q[0][0] * q[1][1] - q[0][1] * q[1][0]
     with open(out, "w") as f:
-        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(m["nodes"]))
-        for k, p in enumerate(m["nodes"]):
-            x, y = apply(q, p[0], p[1])
-            f.write(f"{k + 1} {x!r} {y!r} 0\n")
+        n = len(m["nodes"])
+        new_id = (lambda k: n - k) if order == "reverse" else (lambda k: k + 1)
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % n)
+        for k in (range(n - 1, -1, -1) if order == "reverse" else range(n)):
+            x, y = apply(q, m["nodes"][k][0], m["nodes"][k][1])
+            f.write(f"{new_id(k)} {x!r} {y!r} 0\n")
         f.write("$EndNodes\n$Elements\n%d\n" % len(cells))
         index = {2: 0, 3: 0}
         keys = []
@@ -60,7 +66,7 @@ def transform(path, out, sym):
             keys.append((t, index[t]))
             index[t] += 1
             c = c[::-1] if det < 0 else c
-            f.write(f"{e + 1} {t} 2 0 1 " + " ".join(str(v + 1) for v in c) + "\n")
+            f.write(f"{e + 1} {t} 2 0 1 " + " ".join(str(new_id(v)) for v in c) + "\n")
         f.write("$EndElements\n")
         if view is None:
             return
@@ -78,6 +84,6 @@ def transform(path, out, sym):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
+    if len(sys.argv) not in (4, 5):
         sys.exit(__doc__)
-    transform(*sys.argv[1:4])
+    transform(*sys.argv[1:5])

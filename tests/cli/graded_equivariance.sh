@@ -14,6 +14,9 @@
 #     mesh, to 1e-10 of the domain. Before the frame sampler took the finest of the cells that
 #     share an edge or vertex (frame.hpp FrameSampler), a wall node on a background vertex took
 #     the lowest-numbered cell's metric, and the nodes differed by 3e-2 (turn) and 6e-2 (mirror).
+#     The same with the turned / mirrored quads renumbered: before the fit's colouring went by
+#     the nodes' metric distance from their centroid (quad/smooth.cpp), it followed the node
+#     numbering, and the turned mesh renumbered differed by 7.0e-2 of the domain.
 #  3. lpcvt's points (the default run) on the turned / mirrored frame must be the turned / mirrored
 #     points, after one iteration to 1e-12 of the domain and after the whole run to 1e-3 (the
 #     minimisation carries the rounding of the turned coordinates to 1e-5..1e-3 on PHiLiP's eight
@@ -45,12 +48,13 @@ for n in base rot mir; do
   lpcvt -q "$T/$n.msh" --convention philip -o "$T/$n-one.msh" --max-iterations 1 --max-cycles 1
   lpcvt -q "$T/$n.msh" --convention philip -o "$T/$n-full.msh"
 done
-# 2.: the base run's quads, turned and mirrored exactly, smoothed in each frame
+# 2.: the base run's quads, turned and mirrored exactly, smoothed in each frame; and the turned
+#     ones renumbered (nodes in reversed order), as the chain numbers a turned problem's quads
 recombine -q "$T/base-tri.msh" -o "$T/base-quad.msh"
-for sym in "id base" "r1 rot" "m0 mir"; do
+for sym in "id base keep" "r1 rot keep" "m0 mir keep" "r1 rotrev reverse" "m0 mirrev reverse"; do
   set -- $sym
-  $PY "$SRC/tests/cli/frame_transform.py" "$T/base-quad.msh" "$T/$2-q.msh" "$1"
-  quadsmooth -q "$T/$2-q.msh" --frame "$T/$2.msh" -o "$T/$2-smooth.msh"
+  $PY "$SRC/tests/cli/frame_transform.py" "$T/base-quad.msh" "$T/$2-q.msh" "$1" "$3"
+  quadsmooth -q "$T/$2-q.msh" --frame "$T/${2%rev}.msh" -o "$T/$2-smooth.msh"
 done
 
 $PY - "$T" "$SRC" <<'PY'
@@ -94,7 +98,7 @@ for name, q in Q.items():
 print("ok: the graded frame turns and mirrors with the problem")
 x0 = np.array(read_msh(f"{T}/base-smooth.msh")["nodes"])[:, :2]
 span = np.ptp(x0, axis=0).max()
-for name, q in Q.items():
+for name, q in list(Q.items()) + [("rotrev", Q["rot"]), ("mirrev", Q["mir"])]:
     x = np.array(read_msh(f"{T}/{name}-smooth.msh")["nodes"])[:, :2] @ q  # mapped back
     if len(x) != len(x0):
         fail(f"quadsmooth {name}: {len(x)} nodes, the original {len(x0)}")
