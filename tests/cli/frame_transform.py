@@ -11,7 +11,7 @@ stay counter-clockwise). The output is MSH 2.2 with the background's cells, the 
 "Vinv" when it has one (values written with repr: exact) and its $FrameConvention section
 (docs/file-formats.md; PHiLiP's files have none and stay PHiLiP's); the boundary is left to the
 reader, which completes it from the free edges. Used by
-tests/cli/graded_equivariance.sh and bench/quad/dihedral.py.
+tests/cli/graded_equivariance.sh, bench/quad/dihedral.py and bench/quad/lpcvt_equivariance.py.
 """
 import os
 import sys
