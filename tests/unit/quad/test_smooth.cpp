@@ -559,6 +559,26 @@ TEST_CASE("shape_smooth: options outside their documented ranges are an InputErr
   CHECK(m.nodes == make_perturbed_quads(3, 3, 0.2, 1).nodes);  // nothing moved
 }
 
+namespace {
+
+/// m with its nodes renumbered: node v of the result is node perm[v] of m (perm a permutation
+/// of 0..n-1, checked); cells and boundary edges follow.
+Mesh renumbered(const Mesh& m, const std::vector<int>& perm) {
+  const int nn = m.num_nodes();
+  REQUIRE(std::set<int>(perm.begin(), perm.end()).size() == static_cast<size_t>(nn));
+  std::vector<int> where(nn);
+  for (int v = 0; v < nn; ++v) where[perm[v]] = v;
+  Mesh r = m;
+  for (int v = 0; v < nn; ++v) r.nodes[v] = m.nodes[perm[v]];
+  for (Cell& c : r.cells)
+    for (int k = 0; k < c.nv; ++k) c.v[k] = where[c.v[k]];
+  for (BoundaryEdge& e : r.boundary)
+    for (int& v : e.v) v = where[v];
+  return r;
+}
+
+}  // namespace
+
 TEST_CASE("shape_smooth: the same mesh whatever the nodes' numbering, and turned with the problem") {
   // The fit is Gauss-Seidel across colours, so the colouring decides the result of a fit that has
   // not converged; greedy in index order it followed the file's numbering (here: the renumbered
@@ -591,20 +611,9 @@ TEST_CASE("shape_smooth: the same mesh whatever the nodes' numbering, and turned
   REQUIRE(!s0.converged);  // stopped by the sweeps (as quadsmooth's 30 on PHiLiP's frames): the order matters there
   // renumbered: node v of the copy is node perm[v] of the start
   const int nn = start.num_nodes();
-  std::vector<int> perm(nn), where(nn);
+  std::vector<int> perm(nn);
   for (int v = 0; v < nn; ++v) perm[v] = (7919 * v + 13) % nn;  // 7919 prime, no factor of nn
-  {
-    std::vector<int> seen(nn, 0);
-    for (int v : perm) seen[v]++;
-    REQUIRE(std::count(seen.begin(), seen.end(), 1) == nn);
-  }
-  for (int v = 0; v < nn; ++v) where[perm[v]] = v;
-  Mesh renum = start;
-  for (int v = 0; v < nn; ++v) renum.nodes[v] = start.nodes[perm[v]];
-  for (Cell& c : renum.cells)
-    for (int k = 0; k < c.nv; ++k) c.v[k] = where[c.v[k]];
-  for (BoundaryEdge& e : renum.boundary)
-    for (int& v : e.v) v = where[v];
+  Mesh renum = renumbered(start, perm);
   Mesh turned = renum;  // before the fit
   shape_smooth(renum, opt, metric);
   double d = 0;
@@ -628,16 +637,9 @@ TEST_CASE("smooth: the same mesh whatever the nodes' numbering") {
   Mesh tri = testing::delaunay_unit_square(8, 150, 7);
   const Mesh start = split_to_all_quads(tri);
   const int nn = start.num_nodes();
-  std::vector<int> perm(nn), where(nn);
+  std::vector<int> perm(nn);
   for (int v = 0; v < nn; ++v) perm[v] = (7919 * v + 29) % nn;
-  for (int v = 0; v < nn; ++v) where[perm[v]] = v;
-  REQUIRE(std::set<int>(perm.begin(), perm.end()).size() == static_cast<size_t>(nn));
-  Mesh renum = start;
-  for (int v = 0; v < nn; ++v) renum.nodes[v] = start.nodes[perm[v]];
-  for (Cell& c : renum.cells)
-    for (int k = 0; k < c.nv; ++k) c.v[k] = where[c.v[k]];
-  for (BoundaryEdge& e : renum.boundary)
-    for (int& v : e.v) v = where[v];
+  const Mesh renum = renumbered(start, perm);
   Mat2 T;
   T << 3.0, 1.2, -0.4, 0.7;
   for (const bool with_metric : {false, true}) {
