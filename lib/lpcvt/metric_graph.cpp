@@ -20,33 +20,16 @@ double metric_incircle(const Eigen::Matrix2d& M, const Vec2& a, const Vec2& b, c
                        const Vec2& d) {
   const Vec2 md = M * d;
   const Vec2 pa = M * a - md, pb = M * b - md, pc = M * c - md;
-  const double la = pa.squaredNorm(), lb = pb.squaredNorm(), lc = pc.squaredNorm();
-  const double det = la * cross2(pb, pc) - lb * cross2(pa, pc) + lc * cross2(pa, pb);
-  const double s = (la + lb + lc) / 3;
-  if (!(s > 0)) return 0;
+  const double det = pa.squaredNorm() * cross2(pb, pc) - pb.squaredNorm() * cross2(pa, pc) +
+                     pc.squaredNorm() * cross2(pa, pb);
+  const double scale = pa.squaredNorm() * (pc - pb).squaredNorm();  // |M(d - a)|^2 |M(c - b)|^2
+  if (!(scale > 0)) return 0;
   // a reflection (det M < 0, same metric M^T M; most of PHiLiP's frames) maps the CCW triangle to
   // a CW one and would flip the sign of the test: every flip anti-Delaunay
-  return (M(0, 0) * M(1, 1) - M(0, 1) * M(1, 0) < 0 ? -det : det) / (s * s);
+  return (M(0, 0) * M(1, 1) - M(0, 1) * M(1, 0) < 0 ? -det : det) / scale;
 }
 
 namespace {
-
-/// The in-circle test of the quadrilateral c p d q (triangle c p q CCW, d across p q) in the
-/// metric M, > 0 when d is inside the circle through c, p, q: the in-circle determinant divided by
-/// the product of the two diagonals' squared mapped lengths, |M(d - c)|^2 |M(q - p)|^2. The
-/// determinant is the same from either side of the edge (c p q against d, or d q p against c: an
-/// even permutation) and so is this scale, so the value belongs to the quadrilateral, not to the
-/// triangle it is tested from, which follows the numbering (metric_incircle's scale, the test
-/// point's distances, does not). Dimensionless; a reflection (det M < 0) gives the same answer.
-double quad_incircle(const Eigen::Matrix2d& M, const Vec2& c, const Vec2& p, const Vec2& q, const Vec2& d) {
-  const Vec2 md = M * d;
-  const Vec2 pa = M * c - md, pb = M * p - md, pc = M * q - md;
-  const double det = pa.squaredNorm() * cross2(pb, pc) - pb.squaredNorm() * cross2(pa, pc) +
-                     pc.squaredNorm() * cross2(pa, pb);
-  const double scale = pa.squaredNorm() * (pc - pb).squaredNorm();
-  if (!(scale > 0)) return 0;
-  return (M(0, 0) * M(1, 1) - M(0, 1) * M(1, 0) < 0 ? -det : det) / scale;
-}
 
 /// The flip rule's test of edge k of triangle t (vertices V[t], neighbours N[t]: N[t][k] across
 /// the edge opposite V[t][k]) against its neighbour u = N[t][k]: the in-circle value when the
@@ -61,7 +44,7 @@ double flip_value(const std::vector<Vec2>& x, const Tris& V, const Tris& N, int 
   const int d = V[u][l];
   if (V[u][(l + 1) % 3] != q || V[u][(l + 2) % 3] != p) return -1;
   const Eigen::Matrix2d M = metric({x[c], x[p], x[d], x[q]});
-  const double v = quad_incircle(M, x[c], x[p], x[q], x[d]);
+  const double v = metric_incircle(M, x[c], x[p], x[q], x[d]);
   if (!(v > 1e-9)) return -1;
   // strictly convex quadrilateral c p d q: both new triangles positive (relative to size)
   const double s = (x[d] - x[c]).squaredNorm();

@@ -23,7 +23,7 @@
 // triangulation they end in depends on the order, and an order that follows the triangles'
 // numbering (a stack seeded from triangle 0) does not turn with the problem — on PHiLiP's frames
 // turned by 90 degrees or mirrored, split/merge and the exact count then saw other edges and
-// lpcvt's points moved by up to 0.04 of the domain. The in-circle values turn with the problem
+// lpcvt's points moved by up to 0.06 of the domain. The in-circle values turn with the problem
 // (docs/quad-quality.md, "Turned and mirrored graded frames"; tests/cli/graded_equivariance.sh).
 //
 // Flip rule: edge (a, b) with opposite vertices c (triangle a b c, CCW) and d is flipped when d is
@@ -128,8 +128,13 @@ bool metric_delaunay_update(const std::vector<Vec2>& sites, MetricGraph& g, cons
                             int max_inverted = 0, const EdgeMetricFactory& parallel_metric = {});
 
 /// In-circle test of d against the circle through a, b, c (CCW) in the metric M: > 0 inside.
-/// Depends on M^T M only (a reflection, det M < 0, gives the same answer). Scaled to be
-/// dimensionless (divided by the square of the mean squared mapped distance to d).
+/// Depends on M^T M only (a reflection, det M < 0, gives the same answer). Dimensionless: the
+/// in-circle determinant divided by |M(d - a)|^2 |M(c - b)|^2, which for d across the edge b c
+/// (the flip quadrilateral a b d c) is the product of its two diagonals' squared lengths — the
+/// determinant (an even permutation) and this scale are the same tested from either side of the
+/// edge (a b c against d, or d c b against a), so the value belongs to the quadrilateral, not to
+/// the triangle it is tested from, which follows the numbering (metric_graph.hpp "Flip order";
+/// with the test point's distances as the scale, the flips' order followed the side).
 double metric_incircle(const Eigen::Matrix2d& M, const Vec2& a, const Vec2& b, const Vec2& c,
                        const Vec2& d);
 

@@ -1,7 +1,6 @@
 #include "quad/smooth.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -226,10 +225,6 @@ std::vector<WallSlide> wall_slides(const Mesh& m, const Topology& topo) {
   }
   return out;
 }
-
-}  // namespace
-
-namespace {
 
 /// The nodes in the order of their distance from the nodes' centroid c, measured in each node's
 /// metric, |T_i (x_i - c)| (T_at(i) = T_i), then by x, then y, then the index: the order both
