@@ -144,6 +144,29 @@ int main(int argc, char** argv) {
     // refused before any work (run.cpp checks it again for the library's callers)
     if ((app.count("--complexity") > 0) != (app.count("--degree") > 0))
       throw InputError("", "--complexity and --degree go together: the frame is rescaled to complexity/(P+1)^2 cells");
+    // an option of another mode or start is refused, not ignored (it gave the bytes of the run
+    // without it, exit 0; a new-user review): as quadsmooth's --walls and recombine's --pairing are
+    const std::string start = !init.empty() ? init : analytic_mode ? "uniform" : "lattice";
+    const bool lattice_start = start == "lattice";
+    const bool metric_cells = cells_kind.empty() ? job.metric_cells : cells_kind == "metric";
+    const auto refuse = [&](const char* option, bool given, const std::string& why) {
+      if (given) throw InputError("", std::string(option) + " " + why);
+    };
+    refuse("--sampled", sampled && !analytic_mode, "applies to --analytic only (a FRAME is its own cells)");
+    refuse("--grid", app.count("--grid") > 0 && !analytic_mode, "applies to --analytic only (a FRAME is its own cells)");
+    refuse("--convention", app.count("--convention") > 0 && analytic_mode,
+           "applies to a FRAME's sizes; the --analytic metric has none to read");
+    refuse("--coarse-points", app.count("--coarse-points") > 0 && start != "multilevel",
+           "applies to --init multilevel only (the start is --init " + start + ")");
+    refuse("--jitter", opt.start_jitter > 0 && !lattice_start,
+           "moves the lattice start's points; the start is --init " + start + " (random already: give --seed)");
+    refuse("--lattice-phase", !lattice_phase.empty() && !lattice_start,
+           "moves the lattice start; the start is --init " + start);
+    refuse("--phases", job.phases > 1 && (!lattice_start || analytic_mode),
+           analytic_mode ? "applies to a FRAME's lattice start, not to --analytic"
+                         : "applies to the lattice start; the start is --init " + start);
+    refuse("--cell-anisotropy", app.count("--cell-anisotropy") > 0 && !metric_cells,
+           "applies to --cells metric only (the cells are Euclidean here)");
     if (!in.empty()) tool.input(in);
     if (!geometry.empty()) tool.input(geometry);
     tool.output_mesh(out);

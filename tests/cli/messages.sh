@@ -67,6 +67,27 @@ rc=0; msg=$(dgsolve "$S/examples/meshes/square16.msh" -c "$S/examples/cases/smoo
 rc=0; msg=$(lpcvt "$S/tests/fixtures/philip/input_ss15_fb_p1_3.msh" -o "$T/y.msh" --complexity 4000 2>&1) || rc=$?
 [ $rc -eq 2 ] && [ "$(grep -c . <<<"$msg")" -eq 1 ] && grep -q -- "--complexity and --degree go together" <<<"$msg" ||
   fail "lpcvt --complexity alone: exit $rc, $msg"
+# lpcvt: an option of another mode or start is refused, not ignored (each gave the bytes of the run
+# without it, exit 0: a new-user review, session 38)
+P1="$S/tests/fixtures/philip/input_ss15_fb_p1_3.msh"
+for c in "$P1 --sampled|--sampled applies to --analytic only" "$P1 --grid 8|--grid applies to --analytic only" \
+         "--analytic saddle --convention philip|--convention applies to a FRAME's sizes" \
+         "$P1 --coarse-points 100|--coarse-points applies to --init multilevel only (the start is --init lattice)" \
+         "$P1 --init density --jitter 0.5|--jitter moves the lattice start's points; the start is --init density" \
+         "$P1 --init multilevel --lattice-phase 0.5 0.5|--lattice-phase moves the lattice start; the start is --init multilevel" \
+         "$P1 --init density --phases 3|--phases applies to the lattice start; the start is --init density" \
+         "--analytic saddle --phases 2|--phases applies to a FRAME's lattice start, not to --analytic" \
+         "$P1 --cells euclidean --cell-anisotropy 0.3|--cell-anisotropy applies to --cells metric only"; do
+  IFS='|' read -r args want <<<"$c"
+  rc=0; msg=$(lpcvt $args -o "$T/y.msh" 2>&1) || rc=$?
+  [ $rc -eq 2 ] && [ "$(grep -c . <<<"$msg")" -eq 1 ] && grep -qF -- "lpcvt: $want" <<<"$msg" || fail "lpcvt $args: exit $rc, '$msg'"
+done
+[ ! -e "$T/y.msh" ] || fail "lpcvt wrote an output despite an option of another mode"
+# ... and the same options where they apply still run (the loop passes --jitter 0 with every start)
+lpcvt -q "$P1" -o "$T/ok.msh" --init density --jitter 0 --max-iterations 2 --max-cycles 1 ||
+  fail "lpcvt --init density --jitter 0 refused"
+lpcvt -q --analytic saddle --sampled --grid 8 --init lattice --jitter 0.1 --max-iterations 2 --max-cycles 1 -o "$T/ok.msh" ||
+  fail "lpcvt --analytic --sampled --grid --init lattice --jitter refused"
 
 # --- a report that would overwrite an input is named as the report, with its remedy (was
 # "X.json: output would overwrite the input file X.json" for `-c X.json -o X.msh`)
