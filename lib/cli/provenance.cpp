@@ -14,6 +14,7 @@
 
 #include "cli/build_info.hpp"
 #include "core/sha256.hpp"
+#include "core/standard_input.hpp"
 #include "gmsh/version.hpp"
 
 namespace quadapt {
@@ -102,10 +103,14 @@ nlohmann::json input_checksums(const std::vector<std::string>& inputs) {
   nlohmann::json j = nlohmann::json::object();
   for (const auto& p : inputs) {
     std::error_code ec;
-    if (p != "-" && std::filesystem::is_regular_file(p, ec))
+    if (p == "-") {
+      const auto h = standard_input_sha256();  // null only when nothing was read from it
+      j[p] = h ? nlohmann::json(*h) : nlohmann::json(nullptr);
+    } else if (std::filesystem::is_regular_file(p, ec)) {
       j[p] = sha256_file(p);
-    else
+    } else {
       j[p] = nullptr;
+    }
   }
   return j;
 }

@@ -14,6 +14,7 @@
 
 #include "core/error.hpp"
 #include "core/path_guard.hpp"
+#include "core/standard_input.hpp"
 
 namespace fs = std::filesystem;
 
@@ -183,10 +184,7 @@ void atomic_write_via_path(const std::string& path,
 
 std::string read_text_file(const std::string& path) {
   std::ostringstream ss;
-  if (path == "-") {
-    ss << std::cin.rdbuf();
-    return ss.str();
-  }
+  if (path == "-") return standard_input();  // read once, its sha256 kept for the report
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::string("cannot open (") + std::strerror(errno) + ")");
   protect_input(path);

@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "core/path_guard.hpp"
+#include "core/standard_input.hpp"
 #include "io/gll_scheme.hpp"
 #include "io/msh.hpp"
 #include "io/msh_cursor.hpp"
@@ -836,7 +837,7 @@ Mesh read_msh(std::istream& in, const std::string& path_for_messages) {
 }
 
 Mesh read_msh(const std::string& path) {
-  if (path == "-") return read_msh(std::cin, "standard input");
+  if (path == "-") return MshReader(standard_input(), "standard input").read();  // its sha256 for the report
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::string("cannot open (") + std::strerror(errno) + ")");
   protect_input(path);

@@ -221,6 +221,11 @@ same_bytes mm1.json case.json
 : > empty.json
 estimate-frame -q sol.msh -o sh2.msh --report empty.json
 estimate-frame -q sol.msh -o sh2.msh --report empty.json || fail "--report over an earlier report refused"
+# ... but the report beside the output replaces no empty file: the user did not name it
+# (docs/exit-codes.md; a new-user review found the two cases undocumented)
+: > sh3.json
+expect_exit 2 "sh3.json: exists and is not a quadapt report" estimate-frame sol.msh -o sh3.msh
+[ ! -e sh3.msh ] && [ ! -s sh3.json ] || fail "estimate-frame -o sh3.msh wrote beside an empty sh3.json"
 # lpcvt's --voronoi is JSON too: a user's file in its way is refused before any work (it was
 # replaced: a CLI audit), a mesh name is refused, and a rerun replaces its own earlier --voronoi
 expect_exit 2 "mm1.json: exists and is not quadapt's JSON" lpcvt frame.msh -o v1.msh --voronoi mm1.json

@@ -37,6 +37,16 @@ for path in sys.argv[2:]:
 assert set(p["libraries"]) >= {"gmsh", "CGAL", "Eigen", "UMFPACK", "CLI11", "nlohmann_json"}, p["libraries"]
 print("provenance: report ok:", p["commit"][:12], "dirty" if p["dirty"] else "clean", p["build_type"], p["host"]["cpu"])
 PY
+# an input read from standard input has its sha256 too (it was null: a piped chain lost it; a
+# new-user review, session 38): a mesh through lib/io, a case through read_text_file
+dgsolve "$T/m.msh" -c - -p 1 -o "$T/sol-in.msh" -q < "$S/examples/cases/smooth.json"
+meshquality - < "$T/m.msh" > "$T/mq.json"
+python3 - "$T/sol-in.json" "$T/mq.json" "$S/examples/cases/smooth.json" "$T/m.msh" <<'PY'
+import hashlib, json, sys
+for report, path in ((sys.argv[1], sys.argv[3]), (sys.argv[2], sys.argv[4])):
+    got = json.load(open(report))["provenance"]["input_sha256"]["-"]
+    assert got == hashlib.sha256(open(path, "rb").read()).hexdigest(), (report, got)
+PY
 # options: each once, typed (were the CLI11 text under the option's spelling beside the tool's typed
 # value: recombine 'min-quality': '0' and 'min_quality': 0.0); lpcvt's effective start and
 # preconditioning recorded (they were missing)
