@@ -25,7 +25,7 @@ namespace {
 
 std::vector<std::pair<std::string, std::string>> libraries() {
   return {
-      {"gmsh", gmsh_api_version()},
+      {"gmsh", gmsh_library_version()},
       {"CGAL", QUADAPT_STR(CGAL_VERSION)},
       {"Eigen", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                     std::to_string(EIGEN_MINOR_VERSION)},
@@ -38,6 +38,7 @@ std::vector<std::pair<std::string, std::string>> libraries() {
 #ifdef _OPENMP
       {"OpenMP", QUADAPT_STR(_OPENMP)},
 #endif
+      {"gmsh_api", gmsh_api_version()},  // gmsh.h's, beside the library's above (4.8.0 in Gmsh 4.8.4)
   };
 }
 }  // namespace

@@ -12,6 +12,13 @@ echo "$v"
 [[ "${v%%$'\n'*}" =~ ^dgsolve\ \(quadapt\)\ [0-9] ]] || fail "first line"
 grep -q '^build [A-Za-z]*, ' <<<"$v" || fail "no build type"
 grep -q '^libraries: gmsh [0-9.]*, CGAL [0-9.]*, Eigen [0-9.]*' <<<"$v" || fail "no library versions"
+# gmsh's figure is the library's, not gmsh.h's API version (4.8.0 was given for Debian's 4.8.4:
+# a new-user review, session 38): the file the dynamic linker resolves libgmsh to carries it
+grep -q ', gmsh_api [0-9.]*$' <<<"$v" || fail "no gmsh API version"
+lib=$(readlink -f "$(/sbin/ldconfig -p 2>/dev/null | sed -n 's/.*libgmsh\.so\.[0-9.]* ([^)]*) => //p' | head -n 1)" 2>/dev/null || true)
+if [[ "$lib" =~ libgmsh\.so\.([0-9]+\.[0-9]+\.[0-9]+)$ ]]; then
+  grep -q "^libraries: gmsh ${BASH_REMATCH[1]}, " <<<"$v" || fail "--version's gmsh is not the library's ${BASH_REMATCH[1]} ($lib)"
+fi
 if git -C "$S" rev-parse HEAD >/dev/null 2>&1; then
   head=$(git -C "$S" rev-parse HEAD)
   grep -q "^commit $head" <<<"$v" || fail "--version does not name HEAD $head (rebuild?)"
