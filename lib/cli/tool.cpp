@@ -116,7 +116,7 @@ void Tool::output(const std::string& path) {
   // like the output itself
   const std::string ext = lower_extension(path);
   if (target.kind == OutputTarget::Kind::Regular && (ext == ".msh" || ext.empty())) {
-    protect_output(path + ".opt");
+    protect_output(path + ".opt", "the Gmsh options file written beside " + path);
     resolve_output(path + ".opt");  // a directory, a link into a missing folder: refused now, not after the work
   }
   outputs_.push_back(path);
@@ -161,7 +161,8 @@ void Tool::refuse_foreign_json(const std::string& path, const std::string& what,
   const std::string ext = lower_extension(path);
   static const char* const kNotJson[] = {".msh", ".vtu", ".vtk", ".geo", ".png", ".svg", ".pdf", ".csv", ".opt"};
   if (std::find(std::begin(kNotJson), std::end(kNotJson), ext) != std::end(kNotJson))
-    throw InputError(path, what + " writes " + (report ? "a JSON report" : "JSON") + ", not a " + ext.substr(1) +
+    throw InputError(path, what + " writes " + (report ? "a JSON report" : "JSON") + ", not " +
+                               (std::string("aeiou").find(ext[1]) != std::string::npos ? "an " : "a ") + ext.substr(1) +
                                " file: give it a .json name");
   // nor a file of the user's that is in the way (`--report case.json` of a case not read this
   // time, `-o mm1.msh` beside a case file mm1.json): only a quadapt JSON (an earlier report, an

@@ -104,8 +104,12 @@ void protect_output(const std::string& path, const std::string& role, const std:
   if (path != "-") {
     const std::string key = canonical_key(path);
     for (const Output& out : r.outputs)
-      if (out.path != "-" && canonical_key(out.path) == key)
-        throw InputError(path, "is given twice as an output (also as " + out.path + ")");
+      if (out.path != "-" && canonical_key(out.path) == key) {
+        if (out.role.empty()) throw InputError(path, "is given twice as an output (also as " + out.path + ")");
+        // an output the user did not name (a .opt beside a mesh): say which, not "given twice"
+        throw InputError(path, (role.empty() ? std::string("this output") : role) + " is " + out.role + " too; " +
+                                   (remedy.empty() ? std::string("choose another output path") : remedy));
+      }
   }
   r.outputs.push_back({path, role, remedy});
 }

@@ -197,10 +197,16 @@ expect_exit 2 "writes Gmsh MSH only" refine plain.msh --uniform -o r3.VTU
 expect_exit 2 "writes a JSON report, not a msh file" lpcvt frame.msh -o r4.msh --report keep.MSH
 # a picture, a table or Gmsh options are not reports either (--report pic.svg overwrote the picture)
 echo '<svg/>' > pic.svg
-for f in pic.svg tab.csv o.msh.opt; do
-  expect_exit 2 "writes a JSON report, not a ${f##*.} file" lpcvt frame.msh -o r5.msh --report $f
+for c in "pic.svg|a svg" "tab.csv|a csv" "o.msh.opt|an opt"; do
+  IFS='|' read -r f kind <<<"$c"
+  expect_exit 2 "writes a JSON report, not $kind file" lpcvt frame.msh -o r5.msh --report $f
   [ ! -e r5.msh ] || fail "--report $f: wrote r5.msh"
 done
+# the Gmsh options file beside a mesh output is named as such when another output takes its name
+# (it was "r6.msh.opt: is given twice as an output (also as r6.msh.opt)": a new-user review)
+expect_exit 2 "r6.msh.opt: this output is the Gmsh options file written beside r6.msh too; choose another output path" \
+  lpcvt frame.msh -o r6.msh --write-frame r6.msh.opt
+[ ! -e r6.msh ] || fail "--write-frame r6.msh.opt: wrote r6.msh"
 [ "$(cat pic.svg)" = '<svg/>' ] || fail "--report pic.svg changed pic.svg"
 # a user's file that has the default report's name is not replaced (`-o mm1.msh` beside a case
 # file mm1.json replaced it with the report: a new-user review); an earlier report is
