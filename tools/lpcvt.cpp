@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-exact-count", no_exact, "Do not set the point count to the requested one (adjust_count)");
   app.add_option("--max-cycles", opt.max_cycles, "Split/merge cycles at most")->capture_default_str()->check(PositiveValue);
   app.add_option("--max-iterations", opt.lbfgs.max_iterations, "L-BFGS iterations per minimisation at most (500 with --analytic)")
-      ->capture_default_str()->check(PositiveValue);
+      ->capture_default_str();  // >= 1: lib/cli/option_ranges.cpp's row for every tool
   app.add_option("--weight", opt.lbfgs.gamma, "Energy weight |det M|^gamma: 1 = one point per unit metric area in "
                  "graded frames; 0 = the thesis's energy (--analytic's default)")->capture_default_str();
   app.add_flag("--precondition", opt.lbfgs.precondition, "Scale every site's variables by its local frame (frames' "

@@ -68,6 +68,14 @@ int main(int argc, char** argv) {
       m = tool.read_mesh(in, v);
     }
     plot::check_plot_field(m, field, in);
+    // colour options need colours: without a field, or with a frame (glyphs), they were ignored
+    // (exit 0, the same picture; a new-user review)
+    const CellField* cf = field.empty() ? nullptr : m.cell_field(field);
+    if (field.empty() || (cf && cf->ncomp == 9))
+      for (const char* o : {"--log10", "--range", "--cmap"})
+        if (app.count(o))
+          throw InputError("", std::string(o) + " colours a scalar field or the DG solution; " +
+                                   (field.empty() ? "give --field NAME" : "--field " + field + " is a frame, drawn as glyphs"));
     const bool is_dg = !field.empty() && !m.cell_field(field) && m.cell_node_field(field);
     opt.cmap = plot::parse_colormap(cmap.empty() ? (is_dg ? "coolwarm" : "viridis") : cmap);
     if (app.count("--title")) opt.title = title;

@@ -104,7 +104,11 @@ expect_fail "need x0 < x1" sq.msh --window 1,0,0,1 -o bad3.svg
 expect_fail "unknown glyph" f.msh --field Vinv --glyph arrow -o bad4.svg
 printf '$MeshFormat\n4.1 0 8\n' > broken.msh
 expect_fail "broken.msh" broken.msh -o bad5.svg
-for f in bad1.svg bad2.jpg bad3.svg bad4.svg bad5.svg; do [ ! -e "$f" ] || fail "$f written despite the error"; done
+# colour options without colours are refused (they were ignored, exit 0: a new-user review)
+expect_fail "--log10 colours a scalar field or the DG solution; --field Vinv is a frame, drawn as glyphs" \
+  f.msh --field Vinv --log10 -o bad6.svg
+expect_fail "--range colours a scalar field or the DG solution; give --field NAME" sq.msh --range 0,1 -o bad7.svg
+for f in bad1.svg bad2.jpg bad3.svg bad4.svg bad5.svg bad6.svg bad7.svg; do [ ! -e "$f" ] || fail "$f written despite the error"; done
 # --title '' is documented as "no title" (it was refused as an empty value: a docs audit)
 meshplot -q sq.msh --title '' -o notitle.svg || fail "--title '' refused"
 meshplot -q sq.msh -o titled.svg
