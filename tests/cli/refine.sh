@@ -69,7 +69,7 @@ expect_fail "u1.msh: no cell field 'B'" "$T/u1.msh" --by B
 expect_fail "sq4.msh: field 'Vinv' has 9 components" "$T/sq4.msh" --by Vinv
 expect_fail "tri.msh" "$T/tri.msh" --uniform
 expect_fail "choose --uniform or --by" "$T/sq4.msh"
-expect_fail "" "$T/sq4.msh" --uniform --by B
+expect_fail "--uniform excludes --by" "$T/sq4.msh" --uniform --by B
 # a field of the wrong length
 python3 - "$T/sq4.msh" "$T/short.msh" <<'EOF'
 import sys

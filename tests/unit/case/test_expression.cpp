@@ -186,4 +186,9 @@ TEST_CASE("compiled program: same values as the tree, shared sub-expressions cou
   }
   // tanh(...) appears in every output but is computed once.
   CHECK(prog.num_slots() < expr_size(u) + expr_size(ux) + expr_size(uy) + expr_size(uxx) + expr_size(uyy));
+  // ... by its structure, not only as one shared node: two separate parses of the same text add
+  // no slot (the bound above holds with node sharing alone: a test audit, session 38)
+  const char* text = "0.75*tanh(4*sin(10*y-5) - 24*x + 12) + x^2*y^-3";
+  ExprProgram one({parse_expression(text)}), two({parse_expression(text), parse_expression(text)});
+  CHECK(two.num_slots() == one.num_slots());
 }

@@ -21,6 +21,7 @@
 #include "dg/two_level.hpp"
 #include "fem/basis.hpp"
 #include "io/msh.hpp"
+#include "../worst.hpp"
 
 using namespace quadapt;
 
@@ -139,7 +140,7 @@ TEST_CASE("two-level: the Q_q coarse space is continuous and counts its points")
             const auto [it, fresh] = at.emplace(key, u[i + (p + 1) * j]);
             if (!fresh) {
               ++shared;
-              worst = std::max(worst, std::abs(it->second - u[i + (p + 1) * j]));
+              worst = quadapt_test::worst_of(worst, std::abs(it->second - u[i + (p + 1) * j]));
             }
           }
       }

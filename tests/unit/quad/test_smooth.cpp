@@ -339,6 +339,45 @@ TEST_CASE("shape_smooth: the split of a random Delaunay triangulation stays vali
   }
 }
 
+TEST_CASE("shape_smooth: on oblique walls the sliding nodes stay on their wall lines, and the fit turns with the square") {
+  // the square of the test above turned by 27 degrees and moved: every sliding node must stay on
+  // its wall's line x_a + t (x_b - x_a) (only axis-parallel walls were checked before, where a
+  // slide that moved one coordinate alone would pass: a test audit, session 38), and the fit is
+  // the turned fit of the unturned square
+  Mesh tri = testing::delaunay_unit_square(8, 150, 5);
+  const Mesh square = split_to_all_quads(tri);
+  const double th = 27 * M_PI / 180;
+  Mat2 R;
+  R << std::cos(th), -std::sin(th), std::sin(th), std::cos(th);
+  const Vec2 shift(0.3, -1.7);
+  Mesh before = square;
+  for (Vec2& p : before.nodes) p = R * p + shift;
+  const auto fixed = boundary_node_flags(before);
+  ShapeSmoothOptions opt;
+  opt.target_edge = std::sqrt(total_area(square) / square.num_cells());
+  opt.slide_walls = true;
+  Mesh ref = square, m = before;
+  const auto st_ref = shape_smooth(ref, opt);
+  const auto st = shape_smooth(m, opt);
+  CHECK(st.sliding_nodes == 60);
+  CHECK(st.sliding_nodes == st_ref.sliding_nodes);
+  CHECK(quality_summary(m).inverted == 0);
+  int moved = 0;
+  double off_wall = 0, off_turned = 0;
+  for (int v = 0; v < m.num_nodes(); ++v) {
+    off_turned = quadapt_test::worst_of(off_turned, (m.nodes[v] - (R * ref.nodes[v] + shift)).norm());
+    if (!fixed[v]) continue;
+    const Vec2 a = square.nodes[v], b = R.transpose() * (m.nodes[v] - shift);  // b in the square's frame
+    moved += (m.nodes[v] - before.nodes[v]).norm() > 1e-9;
+    if (a.x() == 0 || a.x() == 1) off_wall = quadapt_test::worst_of(off_wall, std::abs(b.x() - a.x()));
+    if (a.y() == 0 || a.y() == 1) off_wall = quadapt_test::worst_of(off_wall, std::abs(b.y() - a.y()));
+  }
+  CHECK(moved > 30);
+  CHECK(off_wall < 1e-12);
+  CHECK(off_turned < 1e-9);
+  CHECK(total_area(m) == doctest::Approx(total_area(before)).epsilon(1e-12));
+}
+
 TEST_CASE("wall_slides: straight-wall nodes, not corners, group ends, hanging nodes or curved walls") {
   // 4 x 3 grid: 3 + 2 + 3 + 2 wall nodes between the corners
   Mesh m = make_structured_quads(4, 3);
@@ -617,7 +656,7 @@ TEST_CASE("shape_smooth: the same mesh whatever the nodes' numbering, and turned
   Mesh turned = renum;  // before the fit
   shape_smooth(renum, opt, metric);
   double d = 0;
-  for (int v = 0; v < nn; ++v) d = std::max(d, (renum.nodes[v] - ref.nodes[perm[v]]).norm());
+  for (int v = 0; v < nn; ++v) d = quadapt_test::worst_of(d, (renum.nodes[v] - ref.nodes[perm[v]]).norm());
   CHECK(d < 1e-12);
   // turned: x -> Q x, the metric M(Q^T x) Q^T, and the nodes renumbered too
   Mat2 Q;
@@ -626,7 +665,7 @@ TEST_CASE("shape_smooth: the same mesh whatever the nodes' numbering, and turned
   const NodeMetric turned_metric = [&](const Vec2& x) { return Mat2(metric(Q.transpose() * x) * Q.transpose()); };
   shape_smooth(turned, opt, turned_metric);
   double dt = 0;
-  for (int v = 0; v < nn; ++v) dt = std::max(dt, (Q.transpose() * turned.nodes[v] - ref.nodes[perm[v]]).norm());
+  for (int v = 0; v < nn; ++v) dt = quadapt_test::worst_of(dt, (Q.transpose() * turned.nodes[v] - ref.nodes[perm[v]]).norm());
   CHECK(dt < 1e-12);
 }
 
@@ -650,7 +689,7 @@ TEST_CASE("smooth: the same mesh whatever the nodes' numbering") {
     CHECK(sa.moves_full > 100);
     CHECK(sa.moves_full == sb.moves_full);
     double d = 0;
-    for (int v = 0; v < nn; ++v) d = std::max(d, (b.nodes[v] - a.nodes[perm[v]]).norm());
+    for (int v = 0; v < nn; ++v) d = quadapt_test::worst_of(d, (b.nodes[v] - a.nodes[perm[v]]).norm());
     CHECK(d < 1e-12);
   }
 }
