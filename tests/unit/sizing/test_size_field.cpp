@@ -172,6 +172,9 @@ TEST_CASE("frame layout agrees with PHiLiP's Vinv (fixture input_ss15_fb_p2_3.ms
     CHECK(M(0, 1) == doctest::Approx(a[1]).epsilon(1e-9));
     CHECK(std::abs(M(1, 0)) == doctest::Approx(std::abs(a[3])).epsilon(1e-5));
     CHECK(std::abs(M(1, 1)) == doctest::Approx(std::abs(a[4])).epsilon(1e-5));
+    // PHiLiP stores some frames reflected (row 2 negated), hence the abs() above; the rows are
+    // still perpendicular, which abs() alone does not check (a test audit, session 38)
+    CHECK(std::abs(a[0] * a[3] + a[1] * a[4]) < 1e-5 * r1 * r2);
     for (int i : {2, 5, 6, 7, 8}) CHECK(a[i] == 0);
     ++checked;
   } while (std::getline(in, line) && line != "$EndElementData");
