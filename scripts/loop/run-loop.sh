@@ -253,10 +253,9 @@ CASE="$(cd "$(dirname "$CASE")" && pwd)/$(basename "$CASE")"
 exec 9>"$OUT/.lock"
 flock -n 9 || die "another loop is running in $OUT"
 # under the lock: no other loop writes here. Temporary files of writes that a signal cut short
-# (tools' .NAME.tmp-PID.ext, the loop's own NAME.tmp-PID) are removed; loop.done goes until the
-# steps have finished again.
+# (tools' .NAME.tmp-PID.ext, the loop's own NAME.tmp-PID) are removed; loop.done goes once the
+# parameters are accepted (below), until the steps have finished again.
 find "$OUT" \( -name '.*.tmp-[0-9]*' -o -name '*.tmp-[0-9]*' \) -type f -delete 2>/dev/null || true
-rm -f "$OUT/loop.done"
 # a signal to the loop: the running tool is stopped first (its temporary file is removed by the
 # next run), then the loop exits with 128 + N
 CHILD=""
@@ -296,6 +295,9 @@ msg="$(ctl params "$OUT/loop.json" tools="$tools_id" case="$CASE" case_sha256="$
   ${MAX_ANISO:+max_anisotropy="$MAX_ANISO"} ${ERROR_MODEL:+error_model="$ERROR_MODEL"} ${sjit[@]+"${sjit[@]}"} ${fitf[@]+"${fitf[@]}"} ${phs[@]+"${phs[@]}"} ${wls[@]+"${wls[@]}"} ${rcm[@]+"${rcm[@]}"} \
   ${sgr[@]+"${sgr[@]}"} 2>&1)" || die "$msg"
 [ -z "$msg" ] || echo "$msg" >&2
+# only now: a run refused for other parameters (status 2) keeps its loop.done (it was removed before
+# the check, so a finished run looked unfinished to the study targets: a new-user review, session 38)
+rm -f "$OUT/loop.done"
 
 name="$(basename "$(dirname "$OUT")")/$(basename "$OUT")"
 say() { echo "[$name] $*"; }
@@ -355,7 +357,7 @@ run_tool() {
     # convergence table's `warnings` column reads.
     record_warnings "$dir" "$logname" $rc
   elif [ $rc -ne 0 ]; then
-    echo "loop: error: step ${dir##*/}: $logname failed (exit $rc):" >&2
+    echo "loop: error: ${dir##*/}: $logname failed (exit $rc):" >&2
     tail -n 5 "$dir/$logname.log" | sed 's/^/    /' >&2
     echo "  full log: $dir/$logname.log" >&2
     exit 1  # the EXIT trap says which steps are saved

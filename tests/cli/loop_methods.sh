@@ -135,7 +135,10 @@ ran=$((ran + 1))
 # accepted by the variable check and silently left out of every study run)
 for target in sshock-feature-p2-lpcvt "$T/study-runs/sshock-goal/p2-lpcvt-seed2/loop.done" \
               "$T/study-runs/sshock-goal/p2-bamg-seed2/loop.done" loop; do
-  cmd=$(make -n -s -f "$SRC/Makefile.cases" RUNS="$T/study-runs" "$target" CASE=c.json OUT="$T/o" \
+  # one loop's variables for `loop`, the studies' for the study targets (each kind is refused with
+  # the other, cli.messages)
+  if [ "$target" = loop ]; then own=(CASE=c.json OUT="$T/o"); else own=(RUNS="$T/study-runs"); fi
+  cmd=$(make -n -s -f "$SRC/Makefile.cases" "$target" "${own[@]}" \
         MAX_ANISOTROPY=4 START_JITTER=0.1 ERROR_MODEL=thesis 2>&1 | grep run-loop)
   grep -q -- '--max-anisotropy "4"' <<<"$cmd" && grep -q -- '--start-jitter "0.1"' <<<"$cmd" &&
     grep -q -- '--error-model "thesis"' <<<"$cmd" ||

@@ -97,6 +97,9 @@ grep -q "step-0: dgsolve" "$T/log2.txt" && fail "step 0's dgsolve ran again"
 # the same OUT with other parameters is refused
 rc=0; "${MK[@]}" loop "${LOOP[@]}" P=2 > "$T/log3.txt" 2>&1 || rc=$?
 [ $rc -ne 0 ] && grep -q "other parameters" "$T/log3.txt" || { cat "$T/log3.txt"; fail "parameter guard"; }
+# ... and the finished run stays finished (its loop.done was removed before the check: the study
+# targets then took it for unfinished; a new-user review, session 38)
+[ -e "$T/run/loop.done" ] || fail "a run refused for other parameters lost its loop.done"
 # the case re-indented, its keys reordered, a description added: the same case, nothing recomputed
 # (was: refused, "case_sha256: was …, now …" — the file's bytes were hashed); another value: refused
 "$PY" - "$T/smooth.json" "$T/smooth2.json" <<'PYEOF'

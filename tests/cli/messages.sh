@@ -148,6 +148,13 @@ grep -q "case $S/examples/cases/sshock.json;\|case .*/examples/cases/sshock.json
 msg=$(mk OUT="$T/sq2.msh") && fail "check OUT=a file passed: $msg"
 grep -q "it exists and is not a directory" <<<"$msg" || fail "check OUT=a file: $msg"
 [ ! -e "$T/r-local" ] || fail "check created OUT"
+# a variable of the other kind of target is refused, not ignored (a study target took STEPS=2 P=3 and
+# ran p = 1 for 30 steps; `loop RUNS=dir` wrote under runs/: a new-user review, session 38)
+msg=$(make -n -s -f "$S/Makefile.cases" sshock-feature-p1-lpcvt RUNS="$T/st" STEPS=2 P=3 2>&1) && fail "a study target took STEPS P: $msg"
+grep -q "P STEPS: one loop's variables, which the study targets do not read\|STEPS P: one loop's variables, which the study targets do not read" <<<"$msg" || fail "study target with STEPS P: $msg"
+msg=$(mk RUNS="$T/st" STUDY_STEPS=2) && fail "make check took RUNS STUDY_STEPS: $msg"
+grep -q "the studies' variables, which check does not read" <<<"$msg" || fail "check with RUNS: $msg"
+[ ! -e "$T/st" ] || fail "a refused make wrote $T/st"
 
 # --- loop warnings: a wrapped lpcvt that warns (exit 0) and one that exits 1 with a valid output
 mkdir "$T/bin"
