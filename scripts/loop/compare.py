@@ -118,11 +118,31 @@ def main():
     ap.add_argument("--title", default="")
     ap.add_argument("-o", "--output", default="")
     a = ap.parse_args()
-    out = a.output or os.path.join(a.study, "report.md")
-    ps = [int(p) for p in a.ps.split(",") if p]
+
+    def die(msg):  # one line, exit 2, before anything is written (it gave tracebacks: a review)
+        print("compare.py: " + msg, file=sys.stderr)
+        sys.exit(2)
+
+    if not os.path.isdir(a.study):
+        die("--study %s: no such directory (a study's runs, RUNS/STUDY of make -f Makefile.cases)" % a.study)
+    try:
+        ps = [int(p) for p in a.ps.split(",") if p]
+    except ValueError:
+        die("--ps %s: a comma-separated list of degrees, e.g. 1,2,3" % a.ps)
     methods = [m for m in a.methods.split(",") if m]
-    with open(a.thesis) as fh:
-        tcase = json.load(fh)["cases"][a.case]
+    unknown = [m for m in methods if m not in METHOD_NAME.values()]
+    if unknown or not methods or not ps:
+        die("--methods %s / --ps %s: methods among %s, at least one of each" %
+            (a.methods, a.ps, ",".join(sorted(set(METHOD_NAME.values())))))
+    try:
+        with open(a.thesis) as fh:
+            cases = json.load(fh)["cases"]
+    except (OSError, ValueError, KeyError, TypeError) as err:  # not "e": main() calls the module's e()
+        die("--thesis %s: cannot read the thesis's tables (%s)" % (a.thesis, err))
+    if a.case not in cases:
+        die("--case %s: not in %s (its cases: %s)" % (a.case, a.thesis, ", ".join(sorted(cases))))
+    tcase = cases[a.case]
+    out = a.output or os.path.join(a.study, "report.md")
     measure = tcase.get("measure", "functional_error" if a.mode == "goal" else "l2_error")
     name = os.path.basename(os.path.normpath(a.study))
 
@@ -167,6 +187,8 @@ def main():
     summary = []
     for r in tcase["rows"]:
         p, m = r["p"], METHOD_NAME.get(r["method"], r["method"])
+        if p not in ps or m not in methods:
+            continue  # a row of a degree or method not asked for (--ps, --methods)
         run = runs.get((p, m), dict(rows=[], done=False))
         pts = [(num(x, "dofs"), num(x, measure)) for x in run["rows"]]
         pts = [(x, abs(y)) for x, y in pts if x and y is not None and y != 0]

@@ -14,8 +14,9 @@ thesis="${THESIS_TABLES:-$root/docs/data/thesis-tables.json}"
 mkdir -p "$dir"
 if "$PY" -c "import matplotlib" 2>/dev/null; then
   for p in $ps; do
-    args=()
-    for m in $methods; do args+=("$m=$dir/p$p-$m/convergence.csv"); done
+    args=() found=0
+    for m in $methods; do args+=("$m=$dir/p$p-$m/convergence.csv"); [ ! -s "$dir/p$p-$m/convergence.csv" ] || found=1; done
+    [ "$found" = 1 ] || { echo "study-report: note: no run of p = $p in $dir yet: no plot" >&2; continue; }
     "$PY" "$root/scripts/plot/convergence.py" --p "$p" --mode "$mode" --title "$title, p = $p" \
       --thesis "$thesis" --thesis-case "$key" -o "$dir/convergence-p$p.png" "${args[@]}"
   done

@@ -13,7 +13,7 @@ from the $SolvedCase record of the first run's step-0/sol.msh; without it h^(2p+
 h ~ DOFs^(-1/2).
 With --thesis, the thesis's final-mesh rows for this p and the plotted methods are drawn as
 hollow stars in the method's colour. Axes: labelled ticks at 1, 2, 5 x 10^k when the axis spans
-less than two decades (a single labelled decade tick otherwise), plain decades beyond. Runs whose table is missing or empty are listed in the legend as "(no data)".
+less than two decades (a single labelled decade tick otherwise), plain decades beyond. Runs whose table is missing or empty are listed in the legend as "(no data)"; when no run has data it fails (exit 2). A LABEL=DIR takes DIR/convergence.csv.
 Needs python3-matplotlib (Debian); run with /usr/bin/python3.
 """
 import argparse
@@ -125,7 +125,7 @@ def make_figure(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--p", type=int, required=True)
     ap.add_argument("--mode", choices=["feature", "goal"], default="feature")
-    ap.add_argument("--measure", default="auto")
+    ap.add_argument("--measure", choices=["auto", "l2_error", "functional_error"], default="auto")
     ap.add_argument("--title", default="")
     ap.add_argument("--thesis", default="")
     ap.add_argument("--thesis-case", default="")
@@ -144,6 +144,8 @@ def make_figure(argv):
             die("run '%s' is not LABEL=CSV" % spec)
         label, path = spec.split("=", 1)
         labels.add(label)
+        if os.path.isdir(path):  # a run's directory: its table (it drew "(no data)": a review)
+            path = os.path.join(path, "convergence.csv")
         pts = read_curve(path, measure)
         st = style_for(label)
         if not pts:
@@ -152,6 +154,9 @@ def make_figure(argv):
         all_pts += pts
         ax.loglog([p[0] for p in pts], [p[1] for p in pts], "-", label=label, markersize=4, linewidth=1.4, **st)
 
+    if not all_pts:  # an empty plot is nobody's result (it was drawn, exit 0: a review)
+        die("no run has data for %s: %s (each LABEL=CSV a loop's convergence.csv or its directory)" %
+            (measure, " ".join(a.runs)))
     if a.thesis and a.thesis_case:
         with open(a.thesis) as f:
             rows = json.load(f)["cases"][a.thesis_case]["rows"]

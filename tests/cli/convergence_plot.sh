@@ -54,6 +54,14 @@ for out in "$T/nodir/c.png" "$T/c.csv"; do
   [ $rc -eq 2 ] && [ "$(wc -l <<<"$err")" -eq 1 ] && grep -q "^convergence.py: $out: " <<<"$err" || { echo "FAIL: -o $out: exit $rc: $err" >&2; exit 1; }
   [ ! -e "$out" ] || { echo "FAIL: -o $out written" >&2; exit 1; }
 done
+# input mistakes: no run with data, a misspelt measure: exit 2, nothing written (each drew an empty
+# plot, exit 0: a review, session 38); a run's directory stands for its convergence.csv
+for bad in "--measure l2_eror lpcvt=$run/convergence.csv" "lpcvt=$T/nope/convergence.csv"; do
+  rc=0; err=$($PY "$S/scripts/plot/convergence.py" --p 2 -o "$T/bad.png" $bad 2>&1) || rc=$?
+  [ $rc -eq 2 ] && [ ! -e "$T/bad.png" ] || { echo "FAIL: convergence.py $bad: exit $rc: $err" >&2; exit 1; }
+done
+$PY "$S/scripts/plot/convergence.py" --p 2 -o "$T/dir.png" "lpcvt=$run" "bamg=$T/nope" ||
+  { echo "FAIL: convergence.py lpcvt=RUN_DIR" >&2; exit 1; }
 # goal mode: the guide line's order is 2p with diffusion (SIPG) and 2p + 1 for pure advection,
 # read from step-0/sol.msh's $SolvedCase (was: 2p + 1 always; diffusion cases measured ~2p)
 mkdir -p "$run/step-0"

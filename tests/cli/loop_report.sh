@@ -43,6 +43,17 @@ f = r["fixed-fraction"]
 assert f["ours"] is None and f["flag"] == "no data", f
 PYEOF
 grep -q "| 2 | fixed-fraction (not run) |" "$T/study/report.md" || fail "missing run not marked"
+# compare.py: a wrong --study, --case or --thesis is one line and exit 2 (tracebacks, the first after
+# the work: a review, session 38); --ps / --methods keep only their rows
+C="$SRC/scripts/loop/compare.py"
+for bad in "--study $T/nope --thesis $T/tables.json --case demo" "--study $T/study --thesis $T/tables.json --case dem" \
+           "--study $T/study --thesis $T/nope.json --case demo"; do
+  rc=0; err=$("$PY" "$C" $bad --mode feature -o "$T/bad.md" 2>&1) || rc=$?
+  [ $rc -eq 2 ] && [ "$(wc -l <<<"$err")" -eq 1 ] && grep -q "^compare.py: --" <<<"$err" && [ ! -e "$T/bad.md" ] ||
+    fail "compare.py $bad: exit $rc: $err"
+done
+"$PY" "$C" --study "$T/study" --thesis "$T/tables.json" --case demo --mode feature --methods bamg -o "$T/only.md" >/dev/null
+grep -q "^| 2 | bamg " "$T/only.md" && ! grep -q "fixed-fraction\|lpcvt (not run)\|^| 2 | lpcvt" "$T/only.md" || fail "--methods bamg kept other rows: $(cat "$T/only.md")"
 grep -q "quadapt has the smaller error in \*\*1 of 1\*\*" "$T/study/report.md" || fail "summary line"
 if "$PY" -c "import matplotlib" 2>/dev/null; then
   [ "$(head -c 4 "$T/study/convergence-p2.png" | od -An -tx1 | tr -d ' \n')" = "89504e47" ] || fail "no plot"
