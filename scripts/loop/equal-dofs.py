@@ -2,6 +2,7 @@
 """Two loops' errors at equal DOFs: for every step of loop A, B's error at A's DOF count.
 
 usage: equal-dofs.py A/convergence.csv B/convergence.csv [--mode feature|goal] [--labels A,B]
+       (A or B may be the run's directory)
 
 The runs of scripts/loop/run-loop.sh (Makefile.cases loop) on the same case: each row of A's
 table against B's curve, log(error) interpolated linearly in log(DOFs) between B's two steps
@@ -28,6 +29,8 @@ def die(msg):
 
 
 def curve(path, column):
+    if os.path.isdir(path):  # a run's directory: its table (it said "Is a directory": a review)
+        path = os.path.join(path, "convergence.csv")
     try:
         with open(path) as f:
             rows = list(csv.DictReader(f))
@@ -49,9 +52,9 @@ def curve(path, column):
 
 
 def main(argv):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("a")
-    ap.add_argument("b")
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("a", metavar="A", help="loop A's convergence.csv (or its run directory): the rows")
+    ap.add_argument("b", metavar="B", help="loop B's convergence.csv (or its run directory): the curve")
     ap.add_argument("--mode", choices=("feature", "goal"), default="feature")
     ap.add_argument("--labels", default="A,B")
     o = ap.parse_args(argv)

@@ -39,4 +39,8 @@ expect_exit 2 "give two names" $PY "$S/scripts/loop/equal-dofs.py" a.csv b.csv -
 echo "step,cells" > bad.csv
 expect_exit 2 "bad.csv: not a loop's convergence.csv" $PY "$S/scripts/loop/equal-dofs.py" bad.csv b.csv
 expect_exit 2 "none.csv" $PY "$S/scripts/loop/equal-dofs.py" none.csv b.csv
+# a run's directory stands for its convergence.csv (it was "Is a directory": a review, session 38)
+mkdir -p runA && cp a.csv runA/convergence.csv
+[ "$($PY "$S/scripts/loop/equal-dofs.py" runA b.csv --labels lpcvt,bamg)" = "$out" ] || fail "A given as its run directory"
+expect_exit 2 "empty/convergence.csv" $PY "$S/scripts/loop/equal-dofs.py" "$(mkdir -p empty && echo empty)" b.csv
 echo "ok: equal-dofs"
