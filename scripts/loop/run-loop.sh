@@ -174,9 +174,7 @@ if ! command -v dgsolve >/dev/null 2>&1 && [ -x "$root/build/bin/dgsolve" ]; the
 missing=()
 for t in "${tools[@]}"; do command -v "$t" >/dev/null 2>&1 || missing+=("$t"); done
 if [ ${#missing[@]} -gt 0 ]; then
-  die "tool(s) not found: ${missing[*]} (needed by METHOD=$METHOD MODE=$MODE). Build them
-  (cmake --build build --target ${missing[*]}) and put their directory on PATH (make -f Makefile.cases
-  loop does: BIN=build/bin by default)"
+  die "tool(s) not found: ${missing[*]} (needed by METHOD=$METHOD MODE=$MODE). Build them (cmake --build build --target ${missing[*]}) and put their directory on PATH (make -f Makefile.cases loop does: BIN=build/bin by default)"
 fi
 # the DG degree range is the library's, as dgsolve --help states it ("degree P (1..8)"); goal mode
 # solves the adjoint at p + 1, so its largest p is one less (lib/dg/degree.hpp)
