@@ -185,10 +185,19 @@ void atomic_write_via_path(const std::string& path,
 std::string read_text_file(const std::string& path) {
   std::ostringstream ss;
   if (path == "-") return standard_input();  // read once, its sha256 kept for the report
+  // a directory opens, then its read threw std::ios_base::failure past the typed errors (a library
+  // user's review, session 38)
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::string("cannot open (") + std::strerror(errno) + ")");
   protect_input(path);
-  ss << in.rdbuf();
+  try {
+    ss << in.rdbuf();
+  } catch (const std::ios_base::failure& e) {
+    throw InputError(path, std::string("cannot read (") + e.what() + ")");
+  }
+  if (in.bad()) throw InputError(path, "cannot read (a read error)");
   return ss.str();
 }
 

@@ -93,8 +93,9 @@ class TempFile {
   SignalCleanup on_signal_;
 };
 
-/// Reads a whole text file ("-": standard input) and records it as an input (path_guard);
-/// throws InputError("path: cannot open ...") if it cannot.
+/// Reads a whole file ("-": standard input, core/standard_input.hpp) and records it as an input
+/// (path_guard); throws InputError naming the path for a directory, a file it cannot open or a
+/// read that fails (never std::ios_base::failure).
 std::string read_text_file(const std::string& path);
 
 }  // namespace quadapt

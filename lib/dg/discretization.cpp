@@ -114,7 +114,20 @@ DGDiscretization::DGDiscretization(const Mesh& mesh, const Case& cs, int p, cons
   // the case's boundary names against the mesh's groups (the tools check this first, with the
   // file names; here for every caller of the library)
   check_case_boundaries(cs, mesh);
-  if (opt_.extra_points < 1) opt_.extra_points = 1;
+  // the options as the header states them, for every caller of the library (a negative penalty
+  // solved to a 15x larger error and extra_points < 1 was raised to 1 unseen: a library user's
+  // review, session 38; dgsolve --penalty refused it already)
+  if (!(opt_.penalty_factor > 0) || !std::isfinite(opt_.penalty_factor))
+    throw InputError("DGOptions::penalty_factor = " + std::to_string(opt_.penalty_factor) +
+                     ": the SIPG penalty factor must be a positive number (dgsolve --penalty)");
+  if (!(opt_.boundary_penalty_factor < 0 || opt_.boundary_penalty_factor > 0) ||
+      !std::isfinite(opt_.boundary_penalty_factor))
+    throw InputError("DGOptions::boundary_penalty_factor = " + std::to_string(opt_.boundary_penalty_factor) +
+                     ": positive, or negative for penalty_factor's");
+  if (opt_.extra_points < 1)
+    throw InputError("DGOptions::extra_points = " + std::to_string(opt_.extra_points) + ": at least 1");
+  if (opt_.error_points < 0)
+    throw InputError("DGOptions::error_points = " + std::to_string(opt_.error_points) + ": 0 (automatic) or more");
   topo_ = build_topology(mesh);
   exact_ = std::make_unique<ExactSolution>(cs);
   impl_ = std::make_unique<Impl>();

@@ -69,8 +69,8 @@ class DGDiscretization {
  public:
   /// Builds the discretisation of `cs` on `mesh` (all quads, counter-clockwise) with degree
   /// p in [1, 8]. Keeps references to mesh and cs: they must outlive this object. Throws
-  /// InputError for triangles, p out of range or a boundary face without a group while the
-  /// case names Dirichlet boundaries.
+  /// InputError for triangles, p out of range, options outside their stated ranges (DGOptions)
+  /// or a boundary face without a group while the case names Dirichlet boundaries.
   DGDiscretization(const Mesh& mesh, const Case& cs, int p, const DGOptions& opt = {});
   ~DGDiscretization();
   DGDiscretization(const DGDiscretization&) = delete;

@@ -2,6 +2,7 @@
 
 #include <gmsh.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -18,6 +19,7 @@ const char* const kModel = "quadapt-geometry";
 class GmshGeometry : public BoundaryGeometry {
  public:
   explicit GmshGeometry(const std::string& path);
+  ~GmshGeometry() override;
   Vec2 point(int k, double t) const override { return eval(k, t, 0); }
   Vec2 derivative(int k, double t) const override { return eval(k, t, 1); }
   Vec2 second_derivative(int k, double t) const override { return eval(k, t, 2); }
@@ -25,10 +27,33 @@ class GmshGeometry : public BoundaryGeometry {
 
  private:
   GmshSession session_;
+  void load(const std::string& path);
   Vec2 eval(int k, double t, int order) const;
 };
 
+// The geometry's own Gmsh model, removed when the geometry goes or fails to load (a caller's own
+// Gmsh keeps its models only: gmsh/session.hpp). Requires the session.
+void remove_model() {
+  try {
+    std::vector<std::string> names;
+    gmsh::model::list(names);
+    if (std::find(names.begin(), names.end(), kModel) == names.end()) return;
+    gmsh::model::setCurrent(kModel);
+    gmsh::model::remove();
+  } catch (...) {
+  }
+}
+
 GmshGeometry::GmshGeometry(const std::string& path) {
+  try {
+    load(path);
+  } catch (...) {
+    remove_model();  // the session member still lives here
+    throw;
+  }
+}
+
+void GmshGeometry::load(const std::string& path) {
   source_ = path;
   std::map<int, std::string> curve_name;     // entity tag -> physical name
   std::vector<std::pair<int, Vec2>> points;  // point entities
@@ -121,6 +146,8 @@ GmshGeometry::GmshGeometry(const std::string& path) {
   }
   finish();
 }
+
+GmshGeometry::~GmshGeometry() { remove_model(); }  // the session member ends after this body
 
 Vec2 GmshGeometry::eval(int k, double t, int order) const {
   std::vector<double> v;

@@ -9,12 +9,42 @@ namespace quadapt {
 namespace {
 int g_sessions = 0;    // live GmshSession objects
 int g_call_depth = 0;  // nested gmsh_call
+// The program that calls quadapt had initialised Gmsh itself: quadapt neither initialises nor
+// finalizes it, and gives back the caller's current model and the options it set (finalize wiped
+// the caller's models and options: a library user's review, session 38).
+bool g_borrowed = false;
+std::string g_caller_model;
+std::vector<std::pair<std::string, double>> g_caller_options;
+const char* const kSessionOptions[] = {"General.Terminal", "General.AbortOnError"};
+
+// Gmsh 4.8 has no isInitialized(); an initialised Gmsh always has a model (gmsh::clear() and
+// model::remove() leave an empty one), an uninitialised one lists none.
+bool gmsh_initialised() {
+  std::vector<std::string> names;
+  try {
+    gmsh::model::list(names);
+  } catch (...) {
+    return false;
+  }
+  return !names.empty();
+}
 }  // namespace
 
 GmshSession::GmshSession(bool verbose) {
   if (g_sessions == 0) {
     try {
-      gmsh::initialize(0, nullptr, false);
+      g_borrowed = gmsh_initialised();
+      if (g_borrowed) {
+        gmsh::model::getCurrent(g_caller_model);
+        g_caller_options.clear();
+        for (const char* o : kSessionOptions) {
+          double v = 0;
+          gmsh::option::getNumber(o, v);
+          g_caller_options.emplace_back(o, v);
+        }
+      } else {
+        gmsh::initialize(0, nullptr, false);
+      }
       gmsh::option::setNumber("General.Terminal", verbose ? 1 : 0);
       gmsh::option::setNumber("General.AbortOnError", 0);
     } catch (const std::string& s) {
@@ -27,7 +57,12 @@ GmshSession::GmshSession(bool verbose) {
 GmshSession::~GmshSession() {
   if (--g_sessions == 0) {
     try {
-      gmsh::finalize();
+      if (g_borrowed) {
+        for (const auto& [o, v] : g_caller_options) gmsh::option::setNumber(o, v);
+        gmsh::model::setCurrent(g_caller_model);
+      } else {
+        gmsh::finalize();
+      }
     } catch (...) {
     }
   }

@@ -18,8 +18,14 @@ namespace quadapt {
 /// Keeps the Gmsh SDK initialised while alive. Sessions nest through a reference count: the
 /// first one initialises Gmsh (no configuration files, General.Terminal = 0 unless `verbose`,
 /// General.AbortOnError = 0 so that errors inside Gmsh's OpenMP regions do not terminate the
-/// process), the last one finalizes it. The outermost session starts from an empty model and
-/// no views; nested sessions share the current model (call gmsh::clear() to start afresh).
+/// process), the last one finalizes it. quadapt's calls work in models of their own
+/// ("quadapt-geometry", "quadapt-recombine"), which they remove when done.
+///
+/// A program that uses Gmsh itself and had initialised it before: the first session then borrows
+/// that Gmsh — no initialize, no finalize — and the last one gives back the caller's current
+/// model and its General.Terminal and General.AbortOnError; the caller's models, views and other
+/// options are left as they were (tests/unit/gmsh/test_gmsh.cpp). Do not finalize Gmsh while a
+/// quadapt object that holds a session (open_geometry's) is alive.
 class GmshSession {
  public:
   explicit GmshSession(bool verbose = false);

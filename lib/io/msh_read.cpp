@@ -11,6 +11,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "core/atomic_file.hpp"
 #include "core/path_guard.hpp"
 #include "core/standard_input.hpp"
 #include "io/gll_scheme.hpp"
@@ -837,11 +838,9 @@ Mesh read_msh(std::istream& in, const std::string& path_for_messages) {
 }
 
 Mesh read_msh(const std::string& path) {
-  if (path == "-") return MshReader(standard_input(), "standard input").read();  // its sha256 for the report
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, std::string("cannot open (") + std::strerror(errno) + ")");
-  protect_input(path);
-  return read_msh(in, path);
+  // one way in for every file: standard input's bytes (kept for the report's sha256), a directory
+  // or an unreadable file as an InputError (core/atomic_file.hpp)
+  return MshReader(read_text_file(path), path == "-" ? "standard input" : path).read();
 }
 
 Mesh read_valid_msh(const std::string& path, const ValidateOptions& v) {

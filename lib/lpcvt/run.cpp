@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 
@@ -152,8 +153,51 @@ void finish_background(Background& bg, const LpcvtJob& job, nlohmann::json& rep,
 
 }  // namespace
 
+void check_job(const LpcvtJob& job) {
+  const LpcvtOptions& o = job.lpcvt;
+  const LbfgsOptions& l = o.lbfgs;
+  const auto need = [](bool ok, const std::string& field, double v, const std::string& range) {
+    if (ok) return;
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", v);  // as the caller set it: 0, -3, nan
+    throw InputError("", field + " = " + value + ": " + range);
+  };
+  const auto in = [](double v, double lo, double hi) { return v >= lo && v <= hi; };  // false for NaN
+  need(in(o.p, 2, 32), "LpcvtOptions::p", o.p, "the L_p exponent must be in [2, 32] (lpcvt --lp-exponent)");
+  need(LpcvtOptions::valid_boundary_norm(o.boundary_norm), "LpcvtOptions::boundary_norm", o.boundary_norm,
+       "0 (the exponent p) or in [1, 64] (lpcvt --boundary-norm)");
+  need(in(o.start_jitter, 0, 10), "LpcvtOptions::start_jitter", o.start_jitter, "in [0, 10] target edges (lpcvt --jitter)");
+  need(o.coarse_points > 0, "LpcvtOptions::coarse_points", o.coarse_points, "positive (lpcvt --coarse-points)");
+  need(o.max_cycles >= 1, "LpcvtOptions::max_cycles", o.max_cycles, "at least 1 (lpcvt --max-cycles)");
+  need(in(o.change_tol, 0, 1), "LpcvtOptions::change_tol", o.change_tol, "in [0, 1] (lpcvt --change-tol)");
+  need(o.ramp_after >= 0, "LpcvtOptions::ramp_after", o.ramp_after, "0 or more (lpcvt --ramp-after)");
+  need(in(o.lattice_phase.x(), 0, 1) && o.lattice_phase.x() < 1, "LpcvtOptions::lattice_phase.x", o.lattice_phase.x(),
+       "in [0, 1) (lpcvt --lattice-phase)");
+  need(in(o.lattice_phase.y(), 0, 1) && o.lattice_phase.y() < 1, "LpcvtOptions::lattice_phase.y", o.lattice_phase.y(),
+       "in [0, 1) (lpcvt --lattice-phase)");
+  need(l.max_iterations >= 1, "LbfgsOptions::max_iterations", l.max_iterations, "at least 1 (lpcvt --max-iterations)");
+  need(l.past >= 1, "LbfgsOptions::past", l.past, "at least 1 (lpcvt --past)");
+  need(in(l.delta, 0, 1) && l.delta < 1, "LbfgsOptions::delta", l.delta, "in [0, 1) (lpcvt --delta)");
+  need(in(l.gtol, 0, HUGE_VAL), "LbfgsOptions::gtol", l.gtol, "0 or more (lpcvt --gtol)");
+  need(in(l.move_tol, 0, HUGE_VAL), "LbfgsOptions::move_tol", l.move_tol, "0 or more (lpcvt --move-tol)");
+  need(in(l.edge_tol, 0, HUGE_VAL), "LbfgsOptions::edge_tol", l.edge_tol, "0 or more (lpcvt --edge-tol)");
+  need(in(l.gamma, 0, HUGE_VAL), "LbfgsOptions::gamma", l.gamma, "0 or more (lpcvt --weight)");
+  need(l.memory >= 1, "LbfgsOptions::memory", l.memory, "at least 1");
+  need(job.scale == 0 || (job.scale > 0 && std::isfinite(job.scale)), "LpcvtJob::scale", job.scale,
+       "0 (the default scale) or a positive number (lpcvt --scale)");
+  need(in(job.smooth, 0, 1000), "LpcvtJob::smooth", job.smooth, "in [0, 1000] passes (lpcvt --smooth)");
+  need(job.gradation == 0 || (job.gradation > 1 && std::isfinite(job.gradation)), "LpcvtJob::gradation", job.gradation,
+       "0 (none) or above 1 (lpcvt --gradation)");
+  need(in(job.cells_per_triangle, 1, 3), "LpcvtJob::cells_per_triangle", job.cells_per_triangle,
+       "in [1, 3] (lpcvt --cells-per-triangle)");
+  need(in(job.cell_anisotropy, 0, 1), "LpcvtJob::cell_anisotropy", job.cell_anisotropy, "in [0, 1] (lpcvt --cell-anisotropy)");
+  need(in(job.phases, 0, 16), "LpcvtJob::phases", job.phases, "in [0, 16] (lpcvt --phases)");
+  need(in(job.max_points, 0, HUGE_VAL), "LpcvtJob::max_points", job.max_points, "0 (no limit) or more (lpcvt --max-points)");
+}
+
 Background frame_background(const Frame& f, const LpcvtJob& job, nlohmann::json& report,
                             const std::function<void(const std::string&)>& log) {
+  check_job(job);
   Background bg = Background::from_frame(f, job.scale > 0 ? job.scale : frame_metric_scale());
   report["options"]["metric"] = "frame Vinv";
   finish_background(bg, job, report, log);
@@ -289,6 +333,7 @@ std::string frame_span_warning(const FrameSpan& s) {
 
 Background saddle_background(int grid, bool sampled, const LpcvtJob& job, nlohmann::json& report,
                              const std::function<void(const std::string&)>& log) {
+  check_job(job);
   if (grid < 1) throw InputError("", "--grid must be positive");
   const Mesh m = make_structured_quads(grid, grid, -1.3, 1.3, -1.3, 1.3);
   const double s = job.scale > 0 ? job.scale : 1.0;
@@ -317,6 +362,7 @@ int auto_phases(const Background& bg) { return auto_phases(bg.metric_area(), met
 LpcvtResult mesh_background(const Background& bg, const LpcvtJob& job, nlohmann::json& rep,
                             const std::function<void(const std::string&)>& log) {
   const LpcvtOptions& opt = job.lpcvt;
+  check_job(job);
   check_point_budget(bg, job, "");
   if (!(opt.split.lmin >= 0 && opt.split.lmax > opt.split.lmin)) throw InputError("", "need 0 <= --lmin < --lmax");
   rep["options"]["weight"] = opt.lbfgs.gamma;

@@ -45,6 +45,12 @@ struct LpcvtJob {
   static LpcvtJob for_analytic();
 };
 
+/// Throws InputError naming the field ("LpcvtOptions::p = 0: the L_p exponent must be in [2, 32]
+/// (lpcvt --lp-exponent)") when an option of `job` is outside the range the lpcvt tool accepts for
+/// it; frame_background, saddle_background and mesh_background call it first (they ran with p = 0
+/// or a negative scale and returned a poor mesh: a library user's review, session 38).
+void check_job(const LpcvtJob& job);
+
 /// Throws InputError(path, ...) when `bg` asks for more than job.max_points points (its metric
 /// area), before any point is made.
 void check_point_budget(const Background& bg, const LpcvtJob& job, const std::string& path);

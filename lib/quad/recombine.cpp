@@ -11,6 +11,10 @@ namespace quadapt {
 Mesh recombine_to_all_quads(const Mesh& tri_in, const RecombineOptions& opt, RecombineStats* stats,
                             const std::string& path) {
   require_triangulation(tri_in, path);
+  // the metric matching needs the frame its header names (with none it paired in x-y and said
+  // nothing: a library user's review, session 38; the recombine tool refused it already)
+  if (opt.matching == RecombineOptions::Matching::Metric && opt.frame.empty())
+    throw InputError(path, "the metric matching needs a frame: RecombineOptions::with_frame(one M per triangle)");
   RecombineStats st;
   st.triangles_in = tri_in.num_cells();
   Mesh tri = tri_in;

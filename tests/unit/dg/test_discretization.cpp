@@ -326,3 +326,20 @@ TEST_CASE("Neumann data from the case map: flux + 0.5 on the right adds exactly 
     CHECK(worst < 1e-10);
   }
 }
+
+TEST_CASE("DGOptions outside their stated ranges are an InputError naming the field") {
+  // a negative penalty solved to a 15x larger error, extra_points < 1 was raised to 1 unseen (a
+  // library user's review, session 38; dgsolve --penalty refused it already)
+  Case cs = parse_case(R"J({"exact": "x*y", "diffusion": [[1, 0], [0, 1]]})J", "d.json");
+  const Mesh m = make_structured_quads(2, 2);
+  DGOptions o;
+  o.penalty_factor = -1;
+  CHECK_THROWS_WITH_AS(DGDiscretization(m, cs, 1, o), doctest::Contains("DGOptions::penalty_factor = -1"), InputError);
+  o = DGOptions{};
+  o.extra_points = 0;
+  CHECK_THROWS_WITH_AS(DGDiscretization(m, cs, 1, o), doctest::Contains("DGOptions::extra_points = 0"), InputError);
+  o = DGOptions{};
+  o.boundary_penalty_factor = 0;
+  CHECK_THROWS_AS(DGDiscretization(m, cs, 1, o), InputError);
+  CHECK_NOTHROW(DGDiscretization(m, cs, 1, DGOptions{}));
+}

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "core/error.hpp"
+#include "case/case.hpp"
 #include "io/msh.hpp"
 #include "mesh/boundary.hpp"
 #include "mesh_compare.hpp"
@@ -546,4 +547,12 @@ TEST_CASE("MSH 2.2 saved with Mesh.SaveAll: declared side names take the lines G
   REQUIRE(m.groups.size() == 4);
   for (const char* side : {"bottom", "right", "top", "left"}) CHECK(edges_of(m, side) == 2);
   CHECK(m.groups[m.find_group("right")].tag == 2);  // the declared physical tag
+}
+
+TEST_CASE("a directory given as a mesh or a case is an InputError, not std::ios_base::failure") {
+  // the read of a directory threw std::ios_base::failure past every `catch (const quadapt::Error&)`
+  // (a library user's review, session 38)
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  CHECK_THROWS_WITH_AS(read_msh(dir), doctest::Contains("is a directory, not a file"), InputError);
+  CHECK_THROWS_WITH_AS(load_case(dir), doctest::Contains("is a directory, not a file"), InputError);
 }

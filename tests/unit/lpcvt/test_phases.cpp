@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 
+#include "core/error.hpp"
 #include "helpers.hpp"
 #include "lpcvt/lattice.hpp"
 #include "lpcvt/metric_filter.hpp"
@@ -158,4 +159,24 @@ TEST_CASE("phases: run two at a time on two threads, the caller's thread count i
   for (size_t k = 0; k < two.runs.size(); ++k)
     CHECK(two.runs[k].value("irregular", -1) == one.runs[k].value("irregular", -1));
   MESSAGE("kept phase " << one.kept << " of 3; irregular counts " << one.runs.dump());
+}
+
+TEST_CASE("check_job: an option outside the tool's range is an InputError naming the field, before any work") {
+  // a library caller's p = 0 or negative scale ran and returned a poor mesh (a review, session 38)
+  CHECK_NOTHROW(check_job(LpcvtJob::for_frame()));
+  CHECK_NOTHROW(check_job(LpcvtJob::for_analytic()));
+  const auto refused = [](auto set, const char* field) {
+    LpcvtJob j = LpcvtJob::for_frame();
+    set(j);
+    CHECK_THROWS_WITH_AS(check_job(j), doctest::Contains(field), quadapt::InputError);
+    nlohmann::json rep;
+    CHECK_THROWS_AS(saddle_background(4, true, j, rep, {}), quadapt::InputError);
+  };
+  refused([](LpcvtJob& j) { j.lpcvt.p = 0; }, "LpcvtOptions::p = 0: the L_p exponent must be in [2, 32]");
+  refused([](LpcvtJob& j) { j.lpcvt.p = std::nan(""); }, "LpcvtOptions::p = nan");
+  refused([](LpcvtJob& j) { j.scale = -1; }, "LpcvtJob::scale = -1");
+  refused([](LpcvtJob& j) { j.cells_per_triangle = -2; }, "LpcvtJob::cells_per_triangle = -2");
+  refused([](LpcvtJob& j) { j.gradation = 0.5; }, "LpcvtJob::gradation = 0.5");
+  refused([](LpcvtJob& j) { j.lpcvt.lbfgs.max_iterations = 0; }, "LbfgsOptions::max_iterations = 0");
+  refused([](LpcvtJob& j) { j.lpcvt.lattice_phase = Vec2(1, 0); }, "LpcvtOptions::lattice_phase.x = 1");
 }

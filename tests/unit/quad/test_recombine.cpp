@@ -82,3 +82,12 @@ TEST_CASE("recombine: bad input") {
   Mesh empty;
   CHECK_THROWS_AS(recombine_to_all_quads(empty), InputError);
 }
+
+TEST_CASE("recombine: the metric matching without a frame is an InputError") {
+  // it paired in x-y and returned quads, the header saying it "needs frame" (a library user's
+  // review, session 38)
+  RecombineOptions opt;
+  opt.matching = RecombineOptions::Matching::Metric;
+  CHECK_THROWS_WITH_AS(recombine_to_all_quads(testing::delaunay_unit_square(4, 20, 3), opt, nullptr, "t.msh"),
+                       doctest::Contains("t.msh: the metric matching needs a frame"), InputError);
+}
