@@ -32,7 +32,9 @@ TEST_CASE("GmshOptionGuard restores the caller's options, also after an error") 
   CHECK(v == 7);
 }
 
-TEST_CASE("gmsh_recombine: two triangles of the unit square become one quad, nodes kept") {
+namespace {
+// The unit square as two triangles.
+Mesh two_triangles() {
   Mesh tri;
   tri.nodes = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   Cell a, b;
@@ -40,6 +42,12 @@ TEST_CASE("gmsh_recombine: two triangles of the unit square become one quad, nod
   a.v = {0, 1, 2, -1};
   b.v = {0, 2, 3, -1};
   tri.cells = {a, b};
+  return tri;
+}
+}  // namespace
+
+TEST_CASE("gmsh_recombine: two triangles of the unit square become one quad, nodes kept") {
+  const Mesh tri = two_triangles();
   const std::vector<std::vector<int>> loops = {{0, 1, 2, 3}};
   const std::vector<char> on_boundary(4, 1);
   GmshRecombined r = gmsh_recombine(tri, loops, on_boundary, {});
@@ -68,14 +76,7 @@ TEST_CASE("a caller's own Gmsh: quadapt borrows it and leaves its models, curren
   {
     const auto g = open_geometry(std::string(QUADAPT_SOURCE_DIR) + "/examples/geometry/cylinder.geo");
     CHECK(g->num_curves() > 0);
-    Mesh tri;
-    tri.nodes = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    Cell a, b;
-    a.nv = b.nv = 3;
-    a.v = {0, 1, 2, -1};
-    b.v = {0, 2, 3, -1};
-    tri.cells = {a, b};
-    CHECK(gmsh_recombine(tri, {{0, 1, 2, 3}}, std::vector<char>(4, 1), {}).cells.size() == 1);
+    CHECK(gmsh_recombine(two_triangles(), {{0, 1, 2, 3}}, std::vector<char>(4, 1), {}).cells.size() == 1);
   }
   std::vector<std::string> names;
   gmsh::model::list(names);
