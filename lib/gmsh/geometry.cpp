@@ -2,7 +2,6 @@
 
 #include <gmsh.h>
 
-#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -31,24 +30,11 @@ class GmshGeometry : public BoundaryGeometry {
   Vec2 eval(int k, double t, int order) const;
 };
 
-// The geometry's own Gmsh model, removed when the geometry goes or fails to load (a caller's own
-// Gmsh keeps its models only: gmsh/session.hpp). Requires the session.
-void remove_model() {
-  try {
-    std::vector<std::string> names;
-    gmsh::model::list(names);
-    if (std::find(names.begin(), names.end(), kModel) == names.end()) return;
-    gmsh::model::setCurrent(kModel);
-    gmsh::model::remove();
-  } catch (...) {
-  }
-}
-
 GmshGeometry::GmshGeometry(const std::string& path) {
   try {
     load(path);
   } catch (...) {
-    remove_model();  // the session member still lives here
+    remove_gmsh_model(kModel);  // the session member still lives here
     throw;
   }
 }
@@ -147,7 +133,8 @@ void GmshGeometry::load(const std::string& path) {
   finish();
 }
 
-GmshGeometry::~GmshGeometry() { remove_model(); }  // the session member ends after this body
+// its model goes with it (a caller's own Gmsh keeps its models only); the session member ends after this body
+GmshGeometry::~GmshGeometry() { remove_gmsh_model(kModel); }
 
 Vec2 GmshGeometry::eval(int k, double t, int order) const {
   std::vector<double> v;

@@ -21,21 +21,9 @@ GmshRecombined gmsh_plugin::sdk_gmsh_recombine(const Mesh& tri, const std::vecto
   std::vector<int> etypes;
   std::vector<std::vector<std::size_t>> etags, enodes;
   GmshSession session;
-  // its model goes on failure too (a caller's own Gmsh keeps its models only: gmsh/session.hpp)
-  struct ModelGuard {
-    bool added = false;
-    ~ModelGuard() {
-      if (!added) return;
-      try {
-        gmsh::model::setCurrent("quadapt-recombine");
-        gmsh::model::remove();
-      } catch (...) {
-      }
-    }
-  } model;
+  const GmshModelScope model("quadapt-recombine");  // removed however the call ends
   gmsh_call("Blossom-Quad recombination", [&] {
-    gmsh::model::add("quadapt-recombine");
-    model.added = true;
+    gmsh::model::add(model.name());
     const GmshOptionGuard options({{"Mesh.RecombinationAlgorithm", opt.algorithm},
                                    {"Mesh.RecombineOptimizeTopology", opt.optimize_topology},
                                    {"Mesh.Smoothing", opt.smoothing},
@@ -91,8 +79,6 @@ GmshRecombined gmsh_plugin::sdk_gmsh_recombine(const Mesh& tri, const std::vecto
 
     gmsh::model::mesh::getNodes(node_tags, coords, param, -1, -1, false, false);
     gmsh::model::mesh::getElements(etypes, etags, enodes, 2, surf);
-    gmsh::model::remove();
-    model.added = false;
   });
 
   GmshRecombined ans;

@@ -2,6 +2,8 @@
 
 #include <gmsh.h>
 
+#include <algorithm>
+
 #include "core/error.hpp"
 
 namespace quadapt {
@@ -65,6 +67,17 @@ GmshSession::~GmshSession() {
       }
     } catch (...) {
     }
+  }
+}
+
+void remove_gmsh_model(const std::string& name) noexcept {
+  try {
+    std::vector<std::string> names;
+    gmsh::model::list(names);
+    if (std::find(names.begin(), names.end(), name) == names.end()) return;
+    gmsh::model::setCurrent(name);
+    gmsh::model::remove();
+  } catch (...) {
   }
 }
 

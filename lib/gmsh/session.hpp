@@ -34,6 +34,24 @@ class GmshSession {
   GmshSession& operator=(const GmshSession&) = delete;
 };
 
+/// Removes the model `name` if Gmsh has one (quadapt's own models, on success and on failure: a
+/// caller's own Gmsh keeps its models only); never throws. Requires a live session.
+void remove_gmsh_model(const std::string& name) noexcept;
+
+/// remove_gmsh_model(name) when it goes out of scope, however the scope ends: declare it after the
+/// GmshSession and before the gmsh_call that adds the model.
+class GmshModelScope {
+ public:
+  explicit GmshModelScope(std::string name) : name_(std::move(name)) {}
+  ~GmshModelScope() { remove_gmsh_model(name_); }
+  GmshModelScope(const GmshModelScope&) = delete;
+  GmshModelScope& operator=(const GmshModelScope&) = delete;
+  const std::string& name() const { return name_; }
+
+ private:
+  std::string name_;
+};
+
 /// Sets Gmsh's global numeric options while alive and restores the values it found (Gmsh's
 /// options are process-wide: a caller's settings survive our calls). Requires a live session.
 class GmshOptionGuard {

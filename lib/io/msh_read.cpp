@@ -1,10 +1,8 @@
 // read_msh: Gmsh MSH 4.1 and 2.2, ASCII and binary -> Mesh (see io/msh.hpp for the contract).
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iostream>
+#include <istream>
 #include <map>
 #include <limits>
 #include <set>
@@ -12,8 +10,6 @@
 #include <unordered_map>
 
 #include "core/atomic_file.hpp"
-#include "core/path_guard.hpp"
-#include "core/standard_input.hpp"
 #include "io/gll_scheme.hpp"
 #include "io/msh.hpp"
 #include "io/msh_cursor.hpp"
